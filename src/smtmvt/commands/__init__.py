@@ -1,0 +1,1 @@
+"""Sub-commands of the ``smtmvt`` command line (one module each)."""

@@ -1,0 +1,96 @@
+"""Tracker configuration: one frozen dataclass holding every parameter.
+
+Defaults are the paper's (Javanmardi & Qi, ICME 2018, section "Experimental
+Results"): lambda 0.1, gamma 0.25, alpha 30, 400 particles, 10 templates.
+Where the paper is silent the default is named with its source.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+__all__ = ["TrackerConfig"]
+
+
+@dataclass(frozen=True)
+class TrackerConfig:
+    """All parameters of :class:`smtmvt.Tracker`.
+
+    Attributes
+    ----------
+    lam : float
+        Weight of the per-candidate nuclear norm across views (paper: 0.1).
+    gamma : float
+        Weight of the L1 penalties on C and E (paper: 0.25).
+    alpha : float
+        Likelihood sharpness, ``p = exp(-alpha * residual)`` (paper: 30).
+    n_particles : int
+        Number of particles / candidates per frame (paper: 400).
+    n_templates : int
+        Number of target templates N (paper: 10).
+    views : tuple of str
+        Names of the views (see :func:`smtmvt.features.available_views`).
+    affine_std : tuple of 6 floats
+        Relative standard deviations of the affine random walk
+        ``[a11, a12, a21, a22, tx, ty]``; the diagonal terms are perturbed in log
+        space, the translation is in pixels and multiplied by the target scale
+        ``sc`` (see :mod:`smtmvt.motion`). Default: MTT's OTB setting with a
+        larger scale term so that scale change can be followed.
+    feature_size : (int, int)
+        Height, width (pixels) to which each candidate is warped for the HOG,
+        LBP and color views.
+    solver : str
+        ``"fista"`` (accelerated proximal gradient with the exact prox, default)
+        or ``"paper"`` (the paper's subgradient step).
+    solver_tol : float
+        Relative change of the iterates at which the solver stops.
+    solver_max_iter : int
+        Iteration cap of the solver inside the tracker.
+    update_angle : float
+        Template update trigger, degrees (L1-APG's OTB wrapper: 30).
+    occlusion_fraction : float
+        Fraction of the intensity template flagged by E above which the frame
+        is treated as occluded and no template is replaced (L1-APG: 0.25).
+    seed : int or None
+        Seed of the particle filter's random generator; the same seed gives the
+        same boxes.
+    """
+
+    lam: float = 0.1
+    gamma: float = 0.25
+    alpha: float = 30.0
+    n_particles: int = 400
+    n_templates: int = 10
+    views: tuple = ("intensity", "color", "hog", "lbp")
+    affine_std: tuple = (0.01, 0.0005, 0.0005, 0.01, 4.0, 4.0)
+    feature_size: tuple = (32, 32)
+    solver: str = "fista"
+    solver_tol: float = 1e-4
+    solver_max_iter: int = 200
+    update_angle: float = 30.0
+    occlusion_fraction: float = 0.25
+    seed: int | None = 0
+
+    def __post_init__(self):
+        checks = {
+            "lam": self.lam >= 0,
+            "gamma": self.gamma >= 0,
+            "alpha": self.alpha > 0,
+            "n_particles": int(self.n_particles) >= 1,
+            "n_templates": int(self.n_templates) >= 1,
+            "views": len(self.views) >= 1,
+            "affine_std": len(self.affine_std) == 6 and all(s >= 0 for s in self.affine_std),
+            "feature_size": len(self.feature_size) == 2 and min(self.feature_size) >= 8,
+            "solver_tol": self.solver_tol > 0,
+            "solver_max_iter": int(self.solver_max_iter) >= 1,
+        }
+        for name, ok in checks.items():
+            if not ok:
+                raise ValueError(f"TrackerConfig: invalid {name}={getattr(self, name)!r}")
+        object.__setattr__(self, "views", tuple(self.views))
+        object.__setattr__(self, "affine_std", tuple(float(s) for s in self.affine_std))
+        object.__setattr__(self, "feature_size", tuple(int(s) for s in self.feature_size))
+
+    def replace(self, **changes) -> "TrackerConfig":
+        """A copy with some fields changed."""
+        return replace(self, **changes)
