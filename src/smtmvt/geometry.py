@@ -1,0 +1,102 @@
+"""Boxes and affine states.
+
+Coordinates
+-----------
+Boxes in the API are ``(x, y, w, h)`` floats in 0-based pixel coordinates: a box
+with ``x = 0, w = 10`` covers pixel columns 0..9. Pixel *centres* sit at integer
+coordinates, so that box spans the continuous interval ``[-0.5, 9.5]`` and its
+centre is ``x + (w - 1) / 2`` (the OTB convention, shifted by one).
+
+Affine state
+------------
+A particle is 6 numbers ``[a11, a12, a21, a22, tx, ty]`` mapping template
+coordinates ``(u, v)`` to image coordinates (pixel centres)::
+
+    X = a11 * u + a12 * v + tx
+    Y = a21 * u + a22 * v + ty
+
+Template coordinates are centred on the target and measured in a reference
+frame of ``REF`` x ``REF`` units spanning the whole target (``u, v`` in
+``[-REF/2, REF/2]``), as in L1-APG / MTT whose templates are 32 x 32 pixels. So an
+axis-aligned box has ``a11 = w / REF``, ``a22 = h / REF``, ``a12 = a21 = 0`` and
+``(tx, ty)`` at its centre, and the scale ``sc`` of the reference notes is about
+the target size over 32.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["REF", "box_to_affine", "affine_to_box", "affine_scale", "clip_box_to_image"]
+
+#: Size of the template reference frame, in template units.
+REF = 32.0
+
+
+def box_to_affine(box) -> np.ndarray:
+    """Affine state of an axis-aligned 0-based box.
+
+    Parameters
+    ----------
+    box : (4,) or (m, 4) array-like, ``(x, y, w, h)`` pixels, 0-based.
+
+    Returns
+    -------
+    (6,) or (m, 6) float64 ``[a11, a12, a21, a22, tx, ty]``.
+    """
+    b = np.asarray(box, dtype=np.float64)
+    single = b.ndim == 1
+    b = np.atleast_2d(b)
+    x, y, w, h = b.T
+    p = np.zeros((len(b), 6))
+    p[:, 0] = w / REF
+    p[:, 3] = h / REF
+    p[:, 4] = x + (w - 1.0) / 2.0
+    p[:, 5] = y + (h - 1.0) / 2.0
+    return p[0] if single else p
+
+
+def affine_to_box(params) -> np.ndarray:
+    """Axis-aligned box of an affine state.
+
+    The box is centred on ``(tx, ty)``; its width and height are the lengths of
+    the images of the template's horizontal and vertical sides (so a rotated or
+    sheared state gives the box of the same size, not the bounding box of the
+    rotated quadrilateral, which would grow with rotation).
+
+    Parameters
+    ----------
+    params : (6,) or (m, 6) affine states.
+
+    Returns
+    -------
+    (4,) or (m, 4) float64 boxes ``(x, y, w, h)``, 0-based pixels.
+    """
+    p = np.asarray(params, dtype=np.float64)
+    single = p.ndim == 1
+    p = np.atleast_2d(p)
+    w = REF * np.hypot(p[:, 0], p[:, 2])
+    h = REF * np.hypot(p[:, 1], p[:, 3])
+    x = p[:, 4] - (w - 1.0) / 2.0
+    y = p[:, 5] - (h - 1.0) / 2.0
+    out = np.stack([x, y, w, h], axis=1)
+    return out[0] if single else out
+
+
+def affine_scale(params) -> np.ndarray:
+    """Scale ``sc = sqrt((a11^2 + a12^2 + a21^2 + a22^2) / 2)`` of each state, ``(m,)``."""
+    p = np.atleast_2d(np.asarray(params, dtype=np.float64))
+    return np.sqrt((p[:, :4] ** 2).sum(axis=1) / 2.0)
+
+
+def clip_box_to_image(box, shape) -> tuple:
+    """Fraction of a 0-based box inside an image of ``shape`` (H, W[, C]).
+
+    Returns ``(inside_fraction, area)``; used to reject boxes mostly outside.
+    """
+    x, y, w, h = (float(v) for v in box)
+    H, W = shape[:2]
+    ix = max(0.0, min(x + w, W) - max(x, 0.0))
+    iy = max(0.0, min(y + h, H) - max(y, 0.0))
+    area = w * h
+    return (ix * iy / area if area > 0 else 0.0), area

@@ -1,0 +1,75 @@
+"""Motion model: Gaussian random walk over affine states, and resampling.
+
+Following L1-APG and MTT (see ``docs`` of the reference notes): each particle
+``[a11, a12, a21, a22, tx, ty]`` is perturbed independently with standard
+deviations ``std * [1, sc, sc, 1, sc, sc]`` where ``sc`` is the particle's scale
+(:func:`smtmvt.geometry.affine_scale`); the diagonal terms ``a11`` and ``a22`` are
+perturbed in log space (``a *= exp(N(0, std^2))``), so the relative scale change
+per frame is ``std[0]``, ``std[3]``. The translation standard deviation is
+``std[4] * sc`` pixels: with the 32-unit template frame, ``sc`` is about the
+target size over 32, so the search radius grows with the target.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .geometry import affine_scale
+
+__all__ = ["propagate", "resample"]
+
+
+def propagate(params, std, rng: np.random.Generator) -> np.ndarray:
+    """One step of the random walk.
+
+    Parameters
+    ----------
+    params : (n, 6) affine states.
+    std : (6,) relative standard deviations ``[a11, a12, a21, a22, tx, ty]``.
+    rng : numpy Generator (the tracker's seeded generator).
+
+    Returns
+    -------
+    (n, 6) float64 new states.
+    """
+    p = np.array(params, dtype=np.float64, copy=True, ndmin=2)
+    s = np.asarray(std, dtype=np.float64)
+    sc = affine_scale(p)[:, None]
+    noise = rng.standard_normal(p.shape)
+    p[:, 0] *= np.exp(s[0] * noise[:, 0])
+    p[:, 3] *= np.exp(s[3] * noise[:, 3])
+    p[:, 1] += s[1] * sc[:, 0] * noise[:, 1]
+    p[:, 2] += s[2] * sc[:, 0] * noise[:, 2]
+    p[:, 4:] += s[4:] * sc * noise[:, 4:]
+    return p
+
+
+def resample(params, weights, n: int) -> np.ndarray:
+    """Deterministic proportional resampling (L1-APG / MTT).
+
+    Each particle is copied ``floor(n * w_i)`` times (weights normalized to sum
+    to 1); the remaining slots are filled with the best particle. If every
+    weight is zero or not finite, all ``n`` particles become the best one.
+
+    Parameters
+    ----------
+    params : (m, 6) states.
+    weights : (m,) non-negative weights.
+    n : number of particles to return.
+
+    Returns
+    -------
+    (n, 6) float64 states.
+    """
+    p = np.atleast_2d(np.asarray(params, dtype=np.float64))
+    w = np.asarray(weights, dtype=np.float64)
+    w = np.where(np.isfinite(w) & (w > 0), w, 0.0)
+    best = int(np.argmax(w)) if w.sum() > 0 else 0
+    total = w.sum()
+    if total <= 0:
+        return np.repeat(p[best : best + 1], n, axis=0)
+    counts = np.floor(n * w / total).astype(int)
+    idx = np.repeat(np.arange(len(p)), counts)[:n]
+    if len(idx) < n:
+        idx = np.concatenate([idx, np.full(n - len(idx), best)])
+    return p[idx].copy()

@@ -1,0 +1,44 @@
+"""Random walk and resampling of the particle filter."""
+
+import numpy as np
+import pytest
+
+from smtmvt.geometry import affine_scale, box_to_affine
+from smtmvt.motion import propagate, resample
+
+
+def test_propagate_statistics_scale_with_target():
+    rng = np.random.default_rng(0)
+    std = (0.01, 0.0005, 0.0005, 0.01, 4.0, 4.0)
+    for box in [(100, 100, 32, 32), (100, 100, 128, 128)]:
+        p0 = np.repeat(box_to_affine(box)[None], 20000, axis=0)
+        p1 = propagate(p0, std, rng)
+        sc = affine_scale(p0[:1])[0]
+        # Translation std is std[4] * sc pixels.
+        assert np.std(p1[:, 4] - p0[:, 4]) == pytest.approx(4.0 * sc, rel=0.03)
+        # Diagonal terms perturbed in log space: relative change std 1%.
+        assert np.std(np.log(p1[:, 0] / p0[:, 0])) == pytest.approx(0.01, rel=0.03)
+        assert np.all(p1[:, 0] > 0) and np.all(p1[:, 3] > 0)
+
+
+def test_propagate_is_seeded():
+    p0 = np.repeat(box_to_affine((5, 5, 20, 20))[None], 10, axis=0)
+    a = propagate(p0, (0.01, 0, 0, 0.01, 4, 4), np.random.default_rng(3))
+    b = propagate(p0, (0.01, 0, 0, 0.01, 4, 4), np.random.default_rng(3))
+    np.testing.assert_array_equal(a, b)
+
+
+def test_resample_proportional_and_padded_with_best():
+    p = np.arange(4 * 6, dtype=float).reshape(4, 6)
+    out = resample(p, [0.0, 0.5, 0.3, 0.2], 10)
+    ids = out[:, 0] / 6
+    counts = np.bincount(ids.astype(int), minlength=4)
+    assert counts.tolist() == [0, 5, 3, 2]
+    out = resample(p, [0.0, 0.34, 0.33, 0.33], 10)  # floor -> 3+3+3, 1 slot for the best
+    assert np.bincount((out[:, 0] / 6).astype(int), minlength=4).tolist() == [0, 4, 3, 3]
+
+
+def test_resample_all_zero_or_nan_weights_collapse_to_one_particle():
+    p = np.arange(3 * 6, dtype=float).reshape(3, 6)
+    out = resample(p, [0.0, np.nan, 0.0], 5)
+    assert out.shape == (5, 6) and np.all(out == out[0])
