@@ -1,0 +1,216 @@
+"""Candidate patches, the view registry, and column normalization.
+
+A *view* is a pure function ``fn(patches: Patches) -> (n, d) float32`` that
+turns every candidate (or template) patch into one feature vector.
+:func:`extract_views` runs the requested views and returns one ``(d_k, n)``
+matrix per view, columns normalized by :func:`normalize_columns`, ready to be
+used as the SMTMVT observation matrices ``X^k`` or, built from template
+patches, as the dictionaries ``D^k``.
+
+The registry is the module-level dict ``VIEW_REGISTRY`` (name -> function),
+filled with the four default views at import and extended only through
+:func:`register_view`; it is the only mutable module state in
+:mod:`smtmvt.features`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Sequence
+
+import numpy as np
+
+from .color import color_view
+from .hog import hog_view
+from .intensity import intensity_view
+from .lbp import lbp_view
+
+__all__ = [
+    "Patches",
+    "ViewFn",
+    "VIEW_REGISTRY",
+    "DEFAULT_VIEWS",
+    "register_view",
+    "available_views",
+    "extract_views",
+    "normalize_columns",
+]
+
+ViewFn = Callable[["Patches"], np.ndarray]
+
+
+def _as_float32(name: str, value, ndim: int, layout: str) -> np.ndarray:
+    array = np.asarray(value)
+    if array.ndim != ndim:
+        raise ValueError(f"Patches.{name} must be {layout}, got shape {array.shape}")
+    if not (np.issubdtype(array.dtype, np.floating) or np.issubdtype(array.dtype, np.integer)):
+        raise TypeError(f"Patches.{name} must be a real-valued array, got dtype {array.dtype}")
+    return np.ascontiguousarray(array, dtype=np.float32)
+
+
+@dataclass(frozen=True)
+class Patches:
+    """The warped image patches of ``n`` candidates (or templates).
+
+    Attributes
+    ----------
+    intensity : (n, th, tw) float32
+        Tan-Triggs normalized gray, warped at the intensity template size
+        (:func:`smtmvt.features.intensity_template_size`).
+    gray : (n, fh, fw) float32
+        Tan-Triggs normalized gray, warped at the feature size (default 32x32);
+        input of the HOG and LBP views. HOG needs ``fh, fw >= 16``.
+    color : (n, fh, fw, C) float32
+        Raw frame colors scaled to [0, 1], C = 3 (RGB) or C = 1 (gray frames),
+        at the same size as ``gray``; input of the color view.
+
+    Arrays are converted to C-contiguous float32 (no copy when they already
+    are); shapes are checked, values are not.
+    """
+
+    intensity: np.ndarray
+    gray: np.ndarray
+    color: np.ndarray
+
+    def __post_init__(self):
+        intensity = _as_float32("intensity", self.intensity, 3, "(n, th, tw)")
+        gray = _as_float32("gray", self.gray, 3, "(n, fh, fw)")
+        color = _as_float32("color", self.color, 4, "(n, fh, fw, C)")
+        n = intensity.shape[0]
+        if n < 1:
+            raise ValueError("Patches need at least one patch (n >= 1)")
+        if gray.shape[0] != n or color.shape[0] != n:
+            raise ValueError(
+                "Patches arrays disagree on the number of patches n: "
+                f"intensity {intensity.shape[0]}, gray {gray.shape[0]}, color {color.shape[0]}"
+            )
+        if min(intensity.shape[1:]) < 1 or min(gray.shape[1:]) < 1:
+            raise ValueError(
+                f"empty patches: intensity {intensity.shape}, gray {gray.shape}"
+            )
+        if color.shape[1:3] != gray.shape[1:3]:
+            raise ValueError(
+                f"Patches.color is {color.shape[1]}x{color.shape[2]} px but Patches.gray is "
+                f"{gray.shape[1]}x{gray.shape[2]}; both are warped at the feature size"
+            )
+        if color.shape[3] not in (1, 3):
+            raise ValueError(
+                f"Patches.color must have C = 3 (RGB) or C = 1 (gray) channels, got {color.shape[3]}"
+            )
+        object.__setattr__(self, "intensity", intensity)
+        object.__setattr__(self, "gray", gray)
+        object.__setattr__(self, "color", color)
+
+    @property
+    def n(self) -> int:
+        """Number of patches."""
+        return self.intensity.shape[0]
+
+    def subset(self, index) -> "Patches":
+        """The patches selected by ``index`` (an int, slice, mask or index array)."""
+        index = np.atleast_1d(np.arange(self.n)[index])
+        return Patches(self.intensity[index], self.gray[index], self.color[index])
+
+
+DEFAULT_VIEWS = ("intensity", "color", "hog", "lbp")
+
+#: name -> view function; the only mutable module state (see module docstring).
+VIEW_REGISTRY: dict[str, ViewFn] = {
+    "intensity": intensity_view,
+    "color": color_view,
+    "hog": hog_view,
+    "lbp": lbp_view,
+}
+
+
+def register_view(name: str, fn: ViewFn, *, replace: bool = False) -> None:
+    """Add a view ``fn(patches) -> (n, d) float32`` under ``name``.
+
+    Raises ``ValueError`` if ``name`` is taken, unless ``replace=True``.
+    """
+    if not isinstance(name, str) or not name:
+        raise ValueError(f"view name must be a non-empty string, got {name!r}")
+    if not callable(fn):
+        raise TypeError(f"view function for {name!r} must be callable, got {type(fn).__name__}")
+    if name in VIEW_REGISTRY and not replace:
+        raise ValueError(f"view {name!r} is already registered; pass replace=True to override it")
+    VIEW_REGISTRY[name] = fn
+
+
+def available_views() -> tuple[str, ...]:
+    """Names of the registered views, in registration order (defaults first)."""
+    return tuple(VIEW_REGISTRY)
+
+
+# Columns whose centred norm is below this fraction of their own scale are
+# treated as constant (see normalize_columns).
+_CONSTANT_RTOL = 1e-9
+
+
+def normalize_columns(V: np.ndarray) -> np.ndarray:
+    """Zero-mean, unit-L2 columns, as L1-APG / MTT normalize templates and candidates.
+
+    Parameters
+    ----------
+    V : (d, n) real ndarray
+        One feature vector per column.
+
+    Returns
+    -------
+    (d, n) float32 ndarray. Each column minus its mean, divided by its L2 norm.
+
+    A constant column has no direction to keep; it becomes the **zero vector**
+    (never NaN): a zero candidate column is coded by all-zero coefficients and
+    gets the lowest likelihood, and a zero template column is never selected.
+    The arithmetic is done in float64, where centring a constant column of
+    float32 values is exact; a column counts as constant when its centred norm
+    is at most ``1e-9 * sqrt(d) * max|column|`` (float64 rounding level), far
+    below any real float32 variation (relative 6e-8).
+    """
+    V = np.asarray(V)
+    if V.ndim != 2:
+        raise ValueError(f"expected a (d, n) matrix, got shape {V.shape}")
+    X = V.astype(np.float64)
+    X -= X.mean(axis=0, keepdims=True)
+    norm = np.sqrt(np.einsum("ij,ij->j", X, X))
+    scale = np.abs(V).max(axis=0, initial=0.0) * np.sqrt(V.shape[0])
+    constant = norm <= _CONSTANT_RTOL * scale
+    X *= np.where(constant, 0.0, 1.0 / np.where(constant, 1.0, norm))
+    return X.astype(np.float32)
+
+
+def extract_views(patches: Patches, names: Sequence[str] = DEFAULT_VIEWS) -> list[np.ndarray]:
+    """Feature matrices of the patches, one per view.
+
+    Parameters
+    ----------
+    patches : Patches
+        ``n`` candidate (or template) patches.
+    names : sequence of str
+        View names, from :func:`available_views`.
+
+    Returns
+    -------
+    list of (d_k, n) float32 ndarrays, C-contiguous, in the order of ``names``;
+    column ``i`` is the normalized (:func:`normalize_columns`) feature vector of
+    patch ``i``. Defaults at a 32x32 feature size: intensity ``th * tw``,
+    color 48 (RGB) or 16 (gray), hog 324, lbp 160.
+    """
+    if not isinstance(patches, Patches):
+        raise TypeError(f"expected a Patches object, got {type(patches).__name__}")
+    if isinstance(names, str):
+        names = (names,)
+    unknown = [name for name in names if name not in VIEW_REGISTRY]
+    if unknown:
+        raise ValueError(
+            f"unknown view(s) {unknown}; available views: {', '.join(available_views())}"
+        )
+    out = []
+    for name in names:
+        F = np.asarray(VIEW_REGISTRY[name](patches))
+        if F.ndim != 2 or F.shape[0] != patches.n:
+            raise ValueError(
+                f"view {name!r} returned shape {F.shape}, expected ({patches.n}, d)"
+            )
+        out.append(np.ascontiguousarray(normalize_columns(F.T)))
+    return out

@@ -1,0 +1,463 @@
+"""Tests of smtmvt.features: Tan-Triggs, the four views, the registry, normalization."""
+
+import dataclasses
+import warnings
+
+import numpy as np
+import pytest
+from numpy.testing import assert_allclose, assert_array_equal
+from scipy import ndimage as ndi
+from skimage import data
+from skimage.feature import hog as sk_hog
+from skimage.feature import local_binary_pattern as sk_lbp
+
+from smtmvt.features import (
+    Patches,
+    available_views,
+    extract_views,
+    intensity_template_size,
+    normalize_columns,
+    register_view,
+    tan_triggs,
+)
+from smtmvt.features import views as views_module
+from smtmvt.features.color import color_histograms, color_view
+from smtmvt.features.hog import _exact_bins, _orientation_bins, hog_descriptors, hog_dim
+from smtmvt.features.lbp import lbp_codes, lbp_histograms, lbp_view
+from smtmvt.features.tan_triggs import difference_of_gaussians
+
+
+@pytest.fixture(scope="module")
+def camera():
+    return data.camera()  # (512, 512) uint8
+
+
+@pytest.fixture(scope="module")
+def camera_tt(camera):
+    return tan_triggs(camera)
+
+
+def _crops(image, size, count, rng):
+    h, w = size
+    rows = rng.integers(0, image.shape[0] - h, count)
+    cols = rng.integers(0, image.shape[1] - w, count)
+    return np.stack([image[r:r + h, c:c + w] for r, c in zip(rows, cols)]).astype(np.float32)
+
+
+@pytest.fixture(scope="module")
+def gray_patches(camera, camera_tt):
+    """32x32 float32 patches: random, camera crops (raw and Tan-Triggs), tie-heavy, constant."""
+    rng = np.random.default_rng(1)
+    parts = [
+        rng.standard_normal((12, 32, 32)).astype(np.float32) * 3,
+        _crops(camera.astype(np.float32) / 255, (32, 32), 12, rng),
+        _crops(camera_tt, (32, 32), 12, rng),
+        # few distinct levels: many exactly equal neighbours and axis-aligned gradients
+        rng.integers(0, 3, (6, 32, 32)).astype(np.float32) * np.float32(0.3),
+        np.full((1, 32, 32), 1 / 3, dtype=np.float32),
+        np.zeros((1, 32, 32), dtype=np.float32),
+    ]
+    return np.concatenate(parts)
+
+
+def _skimage_hog(patch):
+    return sk_hog(patch, orientations=9, pixels_per_cell=(8, 8), cells_per_block=(2, 2),
+                  block_norm="L2-Hys", feature_vector=True)
+
+
+def _skimage_lbp(patch, P=8, R=1):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # skimage warns on float input
+        return sk_lbp(patch, P, R, "uniform")
+
+
+def _make_patches(n, rng, th=20, tw=20, size=32, channels=3):
+    return Patches(
+        intensity=rng.standard_normal((n, th, tw)).astype(np.float32),
+        gray=rng.standard_normal((n, size, size)).astype(np.float32),
+        color=rng.random((n, size, size, channels)).astype(np.float32),
+    )
+
+
+# --------------------------------------------------------------------------- HOG
+
+def test_hog_matches_skimage(gray_patches):
+    ours = hog_descriptors(gray_patches)
+    ref = np.stack([_skimage_hog(p) for p in gray_patches])
+    assert ours.shape == (len(gray_patches), 324) == ref.shape
+    assert ours.dtype == np.float32
+    assert_allclose(ours, ref, rtol=0, atol=1e-6)
+
+
+def test_hog_matches_skimage_on_partial_cells(camera_tt):
+    # 36x44: the last 4 rows/cols lie outside full cells and must be ignored.
+    patches = _crops(camera_tt, (36, 44), 6, np.random.default_rng(2))
+    ours = hog_descriptors(patches)
+    ref = np.stack([_skimage_hog(p) for p in patches])
+    assert ours.shape[1] == hog_dim((36, 44)) == ref.shape[1]
+    assert_allclose(ours, ref, rtol=0, atol=1e-6)
+
+
+def test_hog_orientation_bins_equal_skimage_float64_binning():
+    rng = np.random.default_rng(3)
+    g_row = np.concatenate([
+        rng.integers(-4, 5, 200_000), rng.standard_normal(200_000),
+        [-1e-30, 1e-30, 0.0, -0.0, 0.0, 1.0, -1.0],
+    ]).astype(np.float32)
+    g_col = np.concatenate([
+        rng.integers(-4, 5, 200_000), rng.standard_normal(200_000),
+        [1.0, -1.0, -1.0, -1.0, 0.0, 0.0, 0.0],
+    ]).astype(np.float32)
+    exact = _exact_bins(g_row, g_col, 9)
+    assert_array_equal(_orientation_bins(g_row, g_col, 9), exact)
+    # skimage's quirk: an angle that rounds to 180 degrees falls in no bin.
+    assert exact[400_000] == 9
+
+
+def test_hog_rejects_too_small_patches():
+    with pytest.raises(ValueError, match="too small"):
+        hog_descriptors(np.zeros((2, 12, 32), dtype=np.float32))
+
+
+# --------------------------------------------------------------------------- LBP
+
+def test_lbp_codes_equal_skimage(gray_patches):
+    ours = lbp_codes(gray_patches)
+    ref = np.stack([_skimage_lbp(p) for p in gray_patches])
+    assert ours.dtype == np.uint8
+    assert_array_equal(ours, ref)
+
+
+@pytest.mark.parametrize("P,R", [(8, 2), (16, 2), (8, 1.5), (4, 1)])
+def test_lbp_codes_equal_skimage_other_radii(gray_patches, P, R):
+    subset = gray_patches[::4, :24, :29]
+    ref = np.stack([_skimage_lbp(p, P, R) for p in subset])
+    assert_array_equal(lbp_codes(subset, P, R), ref)
+
+
+@pytest.mark.parametrize("grid", [4, 2, 3])
+def test_lbp_histograms_equal_ones_from_skimage_codes(gray_patches, grid):
+    codes = np.stack([_skimage_lbp(p) for p in gray_patches]).astype(int)
+    n, h, w = codes.shape
+    bounds_r = [j * h // grid for j in range(grid + 1)]
+    bounds_c = [j * w // grid for j in range(grid + 1)]
+    ref = np.zeros((n, grid, grid, 10))
+    for i in range(n):
+        for a in range(grid):
+            for b in range(grid):
+                cell = codes[i, bounds_r[a]:bounds_r[a + 1], bounds_c[b]:bounds_c[b + 1]]
+                ref[i, a, b] = np.bincount(cell.ravel(), minlength=10) / cell.size
+    ours = lbp_histograms(lbp_codes(gray_patches), 10, grid)
+    assert ours.shape == (n, grid * grid * 10)
+    assert_allclose(ours, ref.reshape(n, -1), rtol=0, atol=1e-7)
+
+
+def test_lbp_view_is_4x4_grid_of_10_codes(gray_patches):
+    patches = Patches(gray_patches[:, :20, :20], gray_patches,
+                      np.zeros(gray_patches.shape + (3,), np.float32))
+    out = lbp_view(patches)
+    assert out.shape == (len(gray_patches), 160)
+    assert_allclose(out.reshape(-1, 16, 10).sum(axis=2), 1.0, atol=1e-6)
+
+
+# --------------------------------------------------------------------------- Tan-Triggs
+
+def _tan_triggs_reference(image01, gamma=0.2, s0=1.0, s1=2.0, alpha=0.1, tau=10.0):
+    """Direct float64 transcription of Tan & Triggs (2010) with scipy filters."""
+    x = np.power(image01, gamma)
+    x = ndi.gaussian_filter(x, s0, mode="reflect") - ndi.gaussian_filter(x, s1, mode="reflect")
+    x = x / np.mean(np.abs(x) ** alpha) ** (1 / alpha)
+    x = x / np.mean(np.minimum(tau, np.abs(x)) ** alpha) ** (1 / alpha)
+    return tau * np.tanh(x / tau)
+
+
+def test_tan_triggs_matches_direct_reference(camera):
+    ours = tan_triggs(camera)
+    assert ours.dtype == np.float32 and ours.shape == camera.shape
+    ref = _tan_triggs_reference(camera / 255.0)
+    assert_allclose(ours, ref, rtol=0, atol=2e-4)
+
+
+@pytest.mark.parametrize("tau", [10.0, 3.0])
+def test_tan_triggs_output_range(camera, tau):
+    rng = np.random.default_rng(4)
+    for image in (camera, rng.random((60, 80)), rng.integers(0, 2, (40, 40)).astype(np.uint8) * 255):
+        out = tan_triggs(image, tau=tau)
+        assert np.all(np.isfinite(out))
+        assert out.min() >= -tau and out.max() <= tau
+        assert np.abs(out).max() > 0.25 * tau  # not collapsed to ~0
+
+
+def test_tan_triggs_invariant_to_input_scale(camera):
+    base = tan_triggs(camera)
+    assert_allclose(tan_triggs(camera.astype(np.uint16) * 257), base, rtol=0, atol=1e-4)
+    assert_allclose(tan_triggs(camera / 255.0), base, rtol=0, atol=1e-4)
+    assert_allclose(tan_triggs(camera.astype(np.float32) * 7.3), base, rtol=0, atol=1e-4)
+
+
+def test_tan_triggs_constant_image_gives_zeros():
+    for image in (np.full((30, 40), 77, np.uint8), np.full((30, 40), 0.37),
+                  np.zeros((30, 40), np.float32), np.full((30, 40), 65535, np.uint16)):
+        out = tan_triggs(image)
+        assert not np.isnan(out).any()
+        assert_array_equal(out, 0)
+
+
+def test_tan_triggs_negative_floats_are_clipped():
+    image = np.random.default_rng(5).random((40, 50))
+    shifted = image.copy()
+    shifted[image < 0.2] = -5.0  # clipped to 0, same as setting them to 0
+    zeroed = image.copy()
+    zeroed[image < 0.2] = 0.0
+    assert_array_equal(tan_triggs(shifted), tan_triggs(zeroed))
+
+
+def test_tan_triggs_removes_smooth_illumination_gradient(camera):
+    image = camera / 255.0
+    h, w = image.shape
+    yy, xx = np.mgrid[0:h, 0:w]
+    for light in (0.3 + 0.7 * xx / (w - 1), 0.25 + 0.75 * (xx + yy) / (h + w - 2)):
+        lit = image * light
+        raw_change = np.linalg.norm(lit - image) / np.linalg.norm(image)
+        a, b = tan_triggs(image), tan_triggs(lit)
+        tt_change = np.linalg.norm(b - a) / np.linalg.norm(a)
+        assert raw_change > 0.3
+        assert tt_change < 0.1 * raw_change
+
+
+def test_difference_of_gaussians_matches_scipy(camera):
+    x = np.power(camera / 255.0, 0.2).astype(np.float32)
+    ref = ndi.gaussian_filter(x.astype(np.float64), 1.0, mode="reflect") \
+        - ndi.gaussian_filter(x.astype(np.float64), 2.0, mode="reflect")
+    assert_allclose(difference_of_gaussians(x, 1.0, 2.0), ref, rtol=0, atol=2e-6)
+    ref0 = x - ndi.gaussian_filter(x.astype(np.float64), 2.0, mode="reflect")
+    assert_allclose(difference_of_gaussians(x, 0.0, 2.0), ref0, rtol=0, atol=2e-6)
+
+
+def test_tan_triggs_rejects_bad_input():
+    with pytest.raises(ValueError, match="gray"):
+        tan_triggs(np.zeros((4, 4, 3), np.uint8))
+    with pytest.raises(TypeError, match="dtype"):
+        tan_triggs(np.zeros((4, 4), np.int32))
+    with pytest.raises(ValueError, match="sigma"):
+        tan_triggs(np.zeros((8, 8), np.uint8), sigma0=2.0, sigma1=1.0)
+
+
+# --------------------------------------------------------------------------- color
+
+def test_color_histogram_channels_sum_to_one():
+    colors = np.random.default_rng(6).random((5, 32, 32, 3)).astype(np.float32)
+    hist = color_histograms(colors)
+    assert hist.shape == (5, 48) and hist.dtype == np.float32
+    assert_allclose(hist.reshape(5, 3, 16).sum(axis=2), 1.0, atol=1e-6)
+    assert np.all(hist >= 0)
+
+
+def test_color_histogram_soft_binning():
+    colors = np.empty((1, 4, 4, 3), np.float32)
+    colors[..., 0] = 2.5 / 16   # centre of bin 2: all mass in bin 2
+    colors[..., 1] = 3.0 / 16   # half-way between the centres of bins 2 and 3
+    colors[..., 2] = 1.0        # beyond the last centre: all in bin 15
+    hist = color_histograms(colors).reshape(3, 16)
+    expected = np.zeros((3, 16))
+    expected[0, 2] = 1.0
+    expected[1, 2] = expected[1, 3] = 0.5
+    expected[2, 15] = 1.0
+    # values are rounded to 8 bits first: 2.5/16 -> 40/255, 3/16 -> 48/255
+    assert_allclose(hist, expected, atol=0.02)
+    assert hist[0, 2] > 0.98 and abs(hist[1, 2] - hist[1, 3]) < 0.04
+
+
+def test_color_histogram_red_vs_blue():
+    red = np.zeros((1, 32, 32, 3), np.float32)
+    red[..., 0] = 0.9
+    blue = np.zeros((1, 32, 32, 3), np.float32)
+    blue[..., 2] = 0.9
+    h_red, h_blue = color_histograms(red)[0], color_histograms(blue)[0]
+    assert np.abs(h_red - h_blue).sum() > 3.0  # two channels fully moved: L1 distance 4
+    assert h_red[:16][14] > 0.5 and h_red[32:][0] == 1.0
+    assert h_blue[32:][14] > 0.5 and h_blue[:16][0] == 1.0
+
+
+def test_color_gray_fallback():
+    rng = np.random.default_rng(7)
+    patches = _make_patches(4, rng, channels=1)
+    hist = color_view(patches)
+    assert hist.shape == (4, 16)
+    assert np.all(np.isfinite(hist))
+    assert_allclose(hist.sum(axis=1), 1.0, atol=1e-6)
+    (X,) = extract_views(patches, ("color",))
+    assert X.shape == (16, 4) and np.all(np.isfinite(X))
+
+
+def test_color_values_outside_unit_range_are_clipped():
+    colors = np.full((1, 8, 8, 3), 1.7, np.float32)
+    colors[..., 1] = -0.3
+    hist = color_histograms(colors).reshape(3, 16)
+    assert hist[0, 15] == 1.0 and hist[1, 0] == 1.0
+
+
+# --------------------------------------------------------------------------- extract_views
+
+def test_available_views_default_order():
+    assert available_views()[:4] == ("intensity", "color", "hog", "lbp")
+
+
+def test_extract_views_shapes_and_normalization():
+    rng = np.random.default_rng(8)
+    n = 37
+    patches = _make_patches(n, rng, th=15, tw=11)
+    out = extract_views(patches)
+    assert [X.shape for X in out] == [(165, n), (48, n), (324, n), (160, n)]
+    for X in out:
+        assert X.dtype == np.float32 and X.flags.c_contiguous
+        assert np.all(np.isfinite(X))
+        assert_allclose(np.linalg.norm(X, axis=0), 1.0, atol=1e-5)
+        assert_allclose(X.mean(axis=0), 0.0, atol=1e-6)
+
+
+def test_extract_views_constant_patches_have_no_nan():
+    n = 3
+    patches = Patches(
+        intensity=np.full((n, 10, 10), 2.5, np.float32),
+        gray=np.full((n, 32, 32), 2.5, np.float32),
+        color=np.full((n, 32, 32, 3), 0.5, np.float32),
+    )
+    out = dict(zip(available_views(), extract_views(patches, available_views()[:4])))
+    for X in out.values():
+        assert not np.isnan(X).any()
+    assert_array_equal(out["intensity"], 0)  # constant template -> zero column
+    assert_array_equal(out["hog"], 0)        # no gradient anywhere
+    # constant colour: one bin per channel, still a proper (non-constant) column
+    assert_allclose(np.linalg.norm(out["color"], axis=0), 1.0, atol=1e-5)
+
+
+def test_extract_views_batch_equals_one_at_a_time():
+    rng = np.random.default_rng(9)
+    patches = _make_patches(6, rng)
+    batch = extract_views(patches)
+    for i in range(patches.n):
+        single = extract_views(patches.subset([i]))
+        for X, x in zip(batch, single):
+            assert_array_equal(X[:, i], x[:, 0])
+
+
+def test_extract_views_single_name_and_order():
+    rng = np.random.default_rng(10)
+    patches = _make_patches(3, rng)
+    hog_only = extract_views(patches, ("hog",))
+    both = extract_views(patches, ("lbp", "hog"))
+    assert len(hog_only) == 1 and len(both) == 2
+    assert_array_equal(both[1], hog_only[0])
+    assert both[0].shape == (160, 3)
+
+
+def test_extract_views_unknown_name_lists_available():
+    patches = _make_patches(2, np.random.default_rng(11))
+    with pytest.raises(ValueError, match="intensity, color, hog, lbp"):
+        extract_views(patches, ("intensity", "sift"))
+
+
+def test_register_view(monkeypatch):
+    monkeypatch.setattr(views_module, "VIEW_REGISTRY", dict(views_module.VIEW_REGISTRY))
+
+    def mean_gray(patches):
+        g = patches.gray
+        return np.stack([g.mean(axis=(1, 2)), g.std(axis=(1, 2))], axis=1).astype(np.float32)
+
+    register_view("mean_gray", mean_gray)
+    assert available_views()[-1] == "mean_gray"
+    patches = _make_patches(4, np.random.default_rng(12))
+    (X,) = extract_views(patches, ("mean_gray",))
+    assert X.shape == (2, 4)
+    with pytest.raises(ValueError, match="already registered"):
+        register_view("mean_gray", mean_gray)
+    register_view("mean_gray", mean_gray, replace=True)
+    register_view("bad", lambda p: np.zeros((p.n + 1, 3), np.float32))
+    with pytest.raises(ValueError, match="returned shape"):
+        extract_views(patches, ("bad",))
+
+
+def test_registry_unchanged_by_register_view_test():
+    assert available_views() == ("intensity", "color", "hog", "lbp")
+
+
+# --------------------------------------------------------------------------- Patches
+
+def test_patches_validation():
+    rng = np.random.default_rng(13)
+    ok = _make_patches(3, rng)
+    with pytest.raises(ValueError, match="number of patches"):
+        Patches(ok.intensity[:2], ok.gray, ok.color)
+    with pytest.raises(ValueError, match=r"\(n, fh, fw\)"):
+        Patches(ok.intensity, ok.gray[0], ok.color)
+    with pytest.raises(ValueError, match="C = 3"):
+        Patches(ok.intensity, ok.gray, np.zeros((3, 32, 32, 2), np.float32))
+    with pytest.raises(ValueError, match="feature size"):
+        Patches(ok.intensity, ok.gray, np.zeros((3, 16, 32, 3), np.float32))
+    with pytest.raises(ValueError, match="at least one"):
+        Patches(ok.intensity[:0], ok.gray[:0], ok.color[:0])
+    converted = Patches(ok.intensity.astype(np.float64), ok.gray, ok.color)
+    assert converted.intensity.dtype == np.float32
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        converted.gray = ok.gray
+
+
+# --------------------------------------------------------------------------- normalize_columns
+
+def test_normalize_columns_basic():
+    V = np.array([[1.0, 3.0], [2.0, 3.0], [3.0, 3.0], [6.0, 3.0]])
+    out = normalize_columns(V)
+    assert out.dtype == np.float32
+    expected = (V[:, 0] - 3.0) / np.linalg.norm(V[:, 0] - 3.0)
+    assert_allclose(out[:, 0], expected, rtol=1e-6)
+    assert_array_equal(out[:, 1], 0)  # constant column -> zero vector, no NaN
+
+
+def test_normalize_columns_constant_columns_never_nan():
+    rng = np.random.default_rng(14)
+    values = rng.standard_normal(50) * 1e3
+    V = np.tile(values, (500, 1))  # 50 constant float64 columns, inexact means
+    out = normalize_columns(V)
+    assert not np.isnan(out).any()
+    assert_array_equal(out, 0)
+    assert_array_equal(normalize_columns(np.zeros((7, 3), np.float32)), 0)
+
+
+def test_normalize_columns_keeps_tiny_real_variation():
+    # one float32 ulp of variation around 1000 is real data, not rounding noise
+    col = np.full(64, 1000.0, np.float32)
+    col[5] = np.nextafter(np.float32(1000.0), np.float32(2000.0))
+    out = normalize_columns(col[:, None])
+    assert_allclose(np.linalg.norm(out), 1.0, atol=1e-6)
+    assert out[5, 0] > 0.9
+
+
+# --------------------------------------------------------------------------- intensity
+
+@pytest.mark.parametrize("w,h,expected", [
+    (60, 90, (30, 20)),    # shorter side >= 20: one third
+    (20, 40, (13, 7)),     # shorter side exactly 20: one third (20/3 = 6.67 -> 7)
+    (45, 33, (11, 15)),
+    (21, 22.5, (8, 7)),    # 7.5 rounds up
+    (19, 40, (20, 10)),    # shorter side < 20: one half (9.5 rounds up)
+    (10, 12, (6, 5)),
+    (6, 5, (4, 4)),        # floor of 4 px per side
+    (40, 7, (4, 20)),
+])
+def test_intensity_template_size(w, h, expected):
+    assert intensity_template_size(w, h) == expected
+
+
+def test_intensity_template_size_rejects_bad_sizes():
+    for w, h in [(0, 10), (10, -1), (np.nan, 10), (np.inf, 30)]:
+        with pytest.raises(ValueError):
+            intensity_template_size(w, h)
+
+
+def test_intensity_view_is_flattened_template():
+    rng = np.random.default_rng(15)
+    patches = _make_patches(3, rng, th=6, tw=9)
+    (X,) = extract_views(patches, ("intensity",))
+    assert X.shape == (54, 3)
+    assert_allclose(X[:, 1], normalize_columns(patches.intensity[1].reshape(-1, 1))[:, 0])
