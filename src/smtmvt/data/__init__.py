@@ -1,4 +1,4 @@
-"""Reading frames and box files.
+"""Reading sequences and box files.
 
 Conventions (project-wide):
 
@@ -6,19 +6,39 @@ Conventions (project-wide):
   files on disk (OTB ``groundtruth_rect.txt``, result files) are **1-based**:
   ``api_box = file_box - (1, 1, 0, 0)``.
 - Frames are ``uint8``/``uint16`` arrays, ``(H, W)`` or ``(H, W, 3)`` **RGB**.
+
+Main entry points::
+
+    seq = open_sequence("otb/David")          # OTB folder, video, image folder or glob
+    seq.first_box                             # 0-based (x, y, w, h)
+    for frame in seq: ...                     # lazy
+    boxes = read_boxes("result.txt")          # (m, 4) 0-based
+    write_boxes("result.txt", boxes)          # 1-based on disk, atomic
 """
 
 from .boxes import parse_boxes, read_boxes, write_boxes
 from .errors import SequenceError, SequenceWarning
 from .frames import IMAGE_EXTENSIONS, read_frame
 from .names import lookup, natural_key
+from .otb import OTB_FIRST_FRAME, open_otb_sequence
+from .sequence import ArraySequence, ImageSequence, Sequence
+from .sources import open_sequence
+from .video import VIDEO_EXTENSIONS, VideoSequence
 
 __all__ = [
+    "ArraySequence",
     "IMAGE_EXTENSIONS",
+    "ImageSequence",
+    "OTB_FIRST_FRAME",
+    "Sequence",
     "SequenceError",
     "SequenceWarning",
+    "VIDEO_EXTENSIONS",
+    "VideoSequence",
     "lookup",
     "natural_key",
+    "open_otb_sequence",
+    "open_sequence",
     "parse_boxes",
     "read_boxes",
     "read_frame",
