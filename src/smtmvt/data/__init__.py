@@ -1,4 +1,4 @@
-"""Reading sequences and box files.
+"""Reading sequences, box files, OTB benchmark folders and attribute tables.
 
 Conventions (project-wide):
 
@@ -14,9 +14,13 @@ Main entry points::
     for frame in seq: ...                     # lazy
     boxes = read_boxes("result.txt")          # (m, 4) 0-based
     write_boxes("result.txt", boxes)          # 1-based on disk, atomic
+    items = open_dataset("otb", on_error="collect")
+    attrs = load_attributes("anno/att")       # {"basketball": ("IV", "OCC", ...)}
 """
 
+from .attributes import ATTRIBUTE_NAMES, ATTRIBUTES, OTB_FLAG_ORDER, attributes_of, load_attributes
 from .boxes import parse_boxes, read_boxes, write_boxes
+from .dataset import list_dataset, open_dataset
 from .errors import SequenceError, SequenceWarning
 from .frames import IMAGE_EXTENSIONS, read_frame
 from .names import lookup, natural_key
@@ -26,17 +30,24 @@ from .sources import open_sequence
 from .video import VIDEO_EXTENSIONS, VideoSequence
 
 __all__ = [
+    "ATTRIBUTES",
+    "ATTRIBUTE_NAMES",
     "ArraySequence",
     "IMAGE_EXTENSIONS",
     "ImageSequence",
     "OTB_FIRST_FRAME",
+    "OTB_FLAG_ORDER",
     "Sequence",
     "SequenceError",
     "SequenceWarning",
     "VIDEO_EXTENSIONS",
     "VideoSequence",
+    "attributes_of",
+    "list_dataset",
+    "load_attributes",
     "lookup",
     "natural_key",
+    "open_dataset",
     "open_otb_sequence",
     "open_sequence",
     "parse_boxes",

@@ -1,0 +1,125 @@
+"""A benchmark folder: one OTB sequence per sub-folder (``<root>/<Seq>/img`` + ground truth)."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from .errors import SequenceError
+from .names import natural_key
+from .otb import groundtruth_targets, is_otb_folder, open_otb_sequence
+
+__all__ = ["open_dataset", "list_dataset"]
+
+
+def list_dataset(root) -> list:
+    """Sequences in ``root`` without opening them: ``[(name, folder, target), ...]``.
+
+    A sub-folder counts when it has ``img/`` or a ground-truth file (hidden
+    folders and others are ignored). A folder with several numbered
+    ground-truth files (``groundtruth_rect.1.txt``, ``.2.txt``) gives one entry
+    per target, named ``<folder>-<k>``; a single numbered file also gives
+    ``<folder>-<k>`` (Human4 -> ``Human4-2``, as OTB names it). ``target`` is
+    None for a plain ``groundtruth_rect.txt`` or none at all. Sorted by name,
+    naturally and case-insensitively.
+    """
+    root = Path(root)
+    if not root.is_dir():
+        raise SequenceError(f"dataset folder not found: {root}", path=root)
+    entries = []
+    for folder in root.iterdir():
+        if folder.name.startswith(".") or not folder.is_dir():
+            continue
+        targets = groundtruth_targets(folder)
+        if not targets and not is_otb_folder(folder):
+            continue
+        if not targets or None in targets:
+            entries.append((folder.name, folder, None))
+        else:
+            entries.extend((f"{folder.name}-{k}", folder, k) for k in targets)
+    return sorted(entries, key=lambda e: natural_key(e[0]))
+
+
+def _select(entries, names, root):
+    """Entries matching ``names`` (sequence or folder names, case-insensitive)."""
+    wanted = {}
+    for n in names:
+        wanted.setdefault(str(n).casefold(), n)
+    chosen, matched = [], set()
+    for entry in entries:
+        name, folder, _ = entry
+        keys = {name.casefold(), folder.name.casefold()}
+        hit = keys & wanted.keys()
+        if hit:
+            chosen.append(entry)
+            matched |= hit
+    unknown = [wanted[k] for k in wanted if k not in matched]
+    if unknown:
+        available = ", ".join(e[0] for e in entries) or "none"
+        raise SequenceError(
+            f"{root}: no sequence named {', '.join(map(repr, unknown))} (case-insensitive); available: {available}",
+            path=root,
+        )
+    return chosen
+
+
+def open_dataset(root, sequences=None, *, on_error="raise") -> list:
+    """Open every OTB sequence in ``root`` (see :func:`list_dataset`), sorted by name.
+
+    Parameters
+    ----------
+    root : path
+        Folder of sequence folders (e.g. ``.../otb``).
+    sequences : iterable of str, optional
+        Keep only these; a name matches a sequence name (``Jogging-1``) or a
+        folder name (``Jogging``: all its targets), case-insensitively.
+        An unknown name raises SequenceError listing the available names.
+    on_error : {"raise", "collect"}
+        What to do with a sequence that cannot be opened (no images, no or bad
+        ground truth, ...):
+
+        - ``"raise"``: raise its SequenceError (the first one, in name order);
+        - ``"collect"``: put the SequenceError in the returned list, in that
+          sequence's place, and go on. The error names the file (and line)
+          at fault; its ``.sequence`` attribute holds the sequence name.
+
+    Returns
+    -------
+    list
+        ``"raise"``: ``list[Sequence]``. ``"collect"``: ``list[Sequence | SequenceError]``,
+        one item per sequence, so a runner can report the broken ones and go
+        on with the rest::
+
+            for item in open_dataset(root, on_error="collect"):
+                if isinstance(item, SequenceError):
+                    print(f"skipped {item.sequence}: {item}")
+                    continue
+                ...
+
+    Notes
+    -----
+    Every sequence must have a ground-truth file (it is a benchmark). Opening
+    reads the ground truth and lists the images; frames are read later, and a
+    bad frame raises SequenceError (naming file and frame) when read.
+    """
+    if on_error not in ("raise", "collect"):
+        raise ValueError(f"on_error must be 'raise' or 'collect', got {on_error!r}")
+    root = Path(root)
+    entries = list_dataset(root)
+    if sequences is not None:
+        if isinstance(sequences, str):
+            sequences = re.split(r"[,\s]+", sequences.strip())
+        entries = _select(entries, sequences, root)
+    items = []
+    for name, folder, target in entries:
+        try:
+            if not groundtruth_targets(folder):
+                raise SequenceError(f"{folder}: no ground-truth file (groundtruth_rect.txt)", path=folder)
+            items.append(open_otb_sequence(folder, name=name, target=target))
+        except SequenceError as exc:
+            if exc.sequence is None:
+                exc.sequence = name
+            if on_error == "raise":
+                raise
+            items.append(exc)
+    return items
