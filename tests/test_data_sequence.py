@@ -66,6 +66,9 @@ def test_otb_folder_frames_lazy_rgb_and_zero_based_groundtruth(tmp_path):
     assert seq.annotated.all()
     assert not seq.is_grayscale
     assert not gt.flags.writeable
+    clone = pickle.loads(pickle.dumps(seq))  # sent to worker processes by the evaluation runner
+    assert clone.name == "Seq" and red_of(clone[1]) == 10
+    np.testing.assert_array_equal(clone.groundtruth, gt)
 
 
 def test_frames_are_read_on_demand_and_a_missing_frame_names_file_and_index(tmp_path):
