@@ -1,0 +1,633 @@
+"""Published OTB results: the benchmark's OPE score files and per-frame result files.
+
+Formats read here
+-----------------
+* **Score JSON** (the Python port of the OTB toolkit, ``tracker_benchmark``):
+  ``OPE/<TRACKER>/scores_<benchmark>/<SUBSET>.json`` with ``seqs``, ``overlapScores``
+  (average overlap per sequence, over the frames with valid ground truth),
+  ``successRateList`` (21 thresholds, mean = AUC) and ``precisionList`` (0..50 px, index 20 =
+  precision score). ``load_published_scores``. These curves are averaged over *their*
+  benchmark's full sequence set (51 for ``cvpr13``, 50 for ``tb50``, 100 for ``tb100``); they
+  are shown beside ours, never mixed into a per-sequence table.
+* **Per-frame result JSON** of that port: ``OPE/<TRACKER>/<Seq>.json``, a one-element list with
+  ``res`` (boxes), ``resType``, ``tmplsize``, ``startFrame``, ``fps``. ``read_otb_json``.
+* **OTB toolkit ``.mat`` files** ``<seq>_<tracker>.mat``: a struct ``results`` (inside a 1x1
+  cell) with ``res``, ``type`` (``rect`` or ``ivtAff``), ``tmplsize``, ``startFrame``,
+  ``annoBegin``, ``len``, ``fps``; or a plain numeric array (MDNet's ``result``).
+  ``read_otb_mat`` / ``load_otb_mat``.
+* **Text results** (got10k, pysot, pytracking; the ``RUN_DIR/results`` layout): one
+  ``x,y,w,h`` box per line, 1-based, separated by commas, tabs or spaces.
+  ``read_box_file``.
+
+``ivtAff`` (IVT, ASLA) conversion is the toolkit's ``calcRectCenter``: with the template size
+``(w, h) = tmplsize`` and the affine ``M = [p1 p3 p4; p2 p5 p6]``, the template corners
+``(-w/2, -h/2)`` and ``(w/2, h/2)`` are mapped, floored, and the box is
+``[floor(c1x), floor(c1y), floor(c3x) - floor(c1x), floor(c3y) - floor(c1y)]`` (flooring is
+what reproduces the published per-sequence figures exactly).
+
+Sequence names differ in case and separator between sources (``BasketBall``, ``basketball``,
+``Skating2-1``, ``Skating2.1``, ``Human4-2`` / ``Human4``): ``canonical_name`` is the key used
+for matching everywhere.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Iterable, Mapping
+
+import numpy as np
+
+__all__ = [
+    "ATTRIBUTES",
+    "ATTRIBUTE_NAMES",
+    "BENCHMARKS",
+    "canonical_name",
+    "benchmark_label",
+    "read_box_file",
+    "write_box_file",
+    "load_published_scores",
+    "published_trackers",
+    "ImportedResult",
+    "read_otb_mat",
+    "load_otb_mat",
+    "read_otb_json",
+    "ivt_affine_to_rect",
+    "import_results",
+    "import_into_run",
+    "load_attribute_table",
+]
+
+#: The 11 OTB attributes, in the order of the paper's figures.
+ATTRIBUTES = ("IV", "SV", "OCC", "DEF", "MB", "FM", "IPR", "OPR", "OV", "BC", "LR")
+#: Order of the 0/1 flags in the toolkit's ``anno/att/<Seq>.txt`` files.
+ATTRIBUTE_FLAG_ORDER = ("IV", "OPR", "SV", "OCC", "DEF", "MB", "FM", "IPR", "OV", "BC", "LR")
+ATTRIBUTE_NAMES = {
+    "IV": "Illumination Variation",
+    "SV": "Scale Variation",
+    "OCC": "Occlusion",
+    "DEF": "Deformation",
+    "MB": "Motion Blur",
+    "FM": "Fast Motion",
+    "IPR": "In-Plane Rotation",
+    "OPR": "Out-of-Plane Rotation",
+    "OV": "Out-of-View",
+    "BC": "Background Clutters",
+    "LR": "Low Resolution",
+}
+#: benchmark key -> (directory suffix, label)
+BENCHMARKS = {
+    "cvpr13": ("cvpr13", "OTB-2013"),
+    "tb50": ("tb50", "TB-50"),
+    "tb100": ("tb100", "OTB-100"),
+}
+_BENCHMARK_ALIASES = {
+    "cvpr13": "cvpr13", "cvpr2013": "cvpr13", "otb2013": "cvpr13", "otb-2013": "cvpr13", "otb13": "cvpr13",
+    "tb50": "tb50", "otb50": "tb50", "tb-50": "tb50",
+    "tb100": "tb100", "otb100": "tb100", "otb-100": "tb100", "otb2015": "tb100", "otb-2015": "tb100",
+}
+# names that mean the same sequence once case and separators are normalised
+_NAME_ALIASES = {"human4-2": "human4"}
+
+
+def canonical_name(name: str) -> str:
+    """Matching key of a sequence name: lower case, ``.``/``_``/space -> ``-``, known aliases
+    (``Human4.2`` is the only Human4 target and OTB folders call it ``Human4``)."""
+    key = re.sub(r"[._\s]+", "-", str(name).strip().lower())
+    return _NAME_ALIASES.get(key, key)
+
+
+def _benchmark_key(benchmark: str) -> str:
+    key = _BENCHMARK_ALIASES.get(str(benchmark).strip().lower())
+    if key is None:
+        raise ValueError(f"unknown benchmark {benchmark!r}: expected one of cvpr13, tb50, tb100")
+    return key
+
+
+def benchmark_label(benchmark: str) -> str:
+    """``"cvpr13"`` -> ``"OTB-2013"``, ``"tb50"`` -> ``"TB-50"``, ``"tb100"`` -> ``"OTB-100"``."""
+    return BENCHMARKS[_benchmark_key(benchmark)][1]
+
+
+# --------------------------------------------------------------------------- text boxes
+
+_SPLIT = re.compile(r"[,;\s]+")
+
+
+def read_box_file(path, ncols: int = 4) -> np.ndarray:
+    """Read a text box file (one ``x,y,w,h`` row per line; comma, tab, space or ``;``).
+
+    Blank lines are skipped. ``NaN`` is accepted. A malformed line raises ``ValueError`` naming
+    the file and the 1-based line number.
+    """
+    path = Path(path)
+    rows = []
+    with open(path, "r", encoding="utf-8", errors="replace") as fh:
+        for lineno, line in enumerate(fh, 1):
+            text = line.strip()
+            if not text:
+                continue
+            parts = [p for p in _SPLIT.split(text) if p]
+            if len(parts) != ncols:
+                raise ValueError(f"{path}:{lineno}: expected {ncols} numbers (x,y,w,h), got {len(parts)}: {text[:60]!r}")
+            try:
+                rows.append([float(p) for p in parts])
+            except ValueError:
+                raise ValueError(f"{path}:{lineno}: not a number in {text[:60]!r}") from None
+    return np.asarray(rows, dtype=np.float64).reshape(-1, ncols)
+
+
+def write_box_file(path, boxes) -> None:
+    """Write ``(n, 4)`` boxes as comma-separated lines (got10k layout), creating folders."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    boxes = np.asarray(boxes, dtype=np.float64).reshape(-1, 4)
+    with open(path, "w", encoding="utf-8") as fh:
+        for row in boxes:
+            fh.write(",".join(_fmt(v) for v in row) + "\n")
+
+
+def _fmt(v: float) -> str:
+    if not np.isfinite(v):
+        return "NaN"
+    if float(v).is_integer():
+        return str(int(v))
+    return repr(float(v))
+
+
+# --------------------------------------------------------------------------- score JSON
+
+
+def _ope_dir(otb_results_dir) -> Path:
+    root = Path(otb_results_dir)
+    if (root / "OPE").is_dir():
+        return root / "OPE"
+    if root.name.upper() == "OPE" and root.is_dir():
+        return root
+    raise FileNotFoundError(f"{root}: no OPE/ folder of published scores (tracker_benchmark JSON layout)")
+
+
+def published_trackers(otb_results_dir, benchmark: str = "tb100") -> list[str]:
+    """Names of the trackers with a ``scores_<benchmark>`` folder, sorted."""
+    ope = _ope_dir(otb_results_dir)
+    sub = "scores_" + BENCHMARKS[_benchmark_key(benchmark)][0]
+    return sorted((p.name for p in ope.iterdir() if (p / sub).is_dir()), key=str.lower)
+
+
+def load_published_scores(otb_results_dir, benchmark: str = "tb100", subset: str = "ALL",
+                          trackers: Iterable[str] | None = None) -> dict:
+    """Published OPE scores of every tracker (or ``trackers``) on ``benchmark`` / ``subset``.
+
+    Returns ``{tracker: {"success": (21,), "precision": (51,), "auc": float,
+    "precision20": float, "sequences": {seq: avg_overlap}, "n_sequences": int,
+    "benchmark": key, "label": "OTB-2013"|..., "subset": subset}}``. Trackers without that
+    subset file are left out. ``otb_results_dir`` is the folder holding ``OPE/`` (or ``OPE``
+    itself).
+    """
+    ope = _ope_dir(otb_results_dir)
+    key = _benchmark_key(benchmark)
+    sub, label = BENCHMARKS[key]
+    wanted = None if trackers is None else {t.lower() for t in trackers}
+    out: dict = {}
+    for name in published_trackers(ope, key):
+        if wanted is not None and name.lower() not in wanted:
+            continue
+        path = ope / name / f"scores_{sub}" / f"{subset}.json"
+        if not path.is_file():
+            continue
+        try:
+            with open(path, "r", encoding="utf-8") as fh:
+                data = json.load(fh)
+            success = np.asarray(data["successRateList"], dtype=np.float64)
+            precision = np.asarray(data["precisionList"], dtype=np.float64)
+            seqs = list(data.get("seqs", []))
+            overlaps = list(data.get("overlapScores", []))
+        except (OSError, ValueError, KeyError, TypeError) as exc:
+            raise ValueError(f"{path}: not a tracker_benchmark score file ({exc})") from None
+        if success.shape != (21,) or precision.shape != (51,):
+            raise ValueError(f"{path}: expected 21 success and 51 precision values, "
+                             f"got {success.shape} and {precision.shape}")
+        out[name] = {
+            "success": success,
+            "precision": precision,
+            "auc": float(success.mean()),
+            "precision20": float(precision[20]),
+            "sequences": {s: float(o) for s, o in zip(seqs, overlaps)},
+            "n_sequences": len(seqs),
+            "benchmark": key,
+            "label": label,
+            "subset": subset,
+        }
+    return out
+
+
+# --------------------------------------------------------------------------- per-frame results
+
+
+@dataclass
+class ImportedResult:
+    """Per-frame boxes of one tracker on one sequence, read from a published/foreign file."""
+
+    tracker: str
+    sequence: str  #: the name as the source spells it
+    boxes: np.ndarray  #: (n, 4) x, y, w, h, 1-based, float64
+    source: str  #: file it came from
+    format: str  #: "otb-mat", "otb-json" or "text"
+    result_type: str = "rect"  #: the source's type before conversion ("rect", "ivtAff")
+    start_frame: int | None = None  #: first frame tracked (1-based, source's numbering)
+    anno_begin: int | None = None  #: frame number of the annotation file's first row
+    fps: float | None = None
+    times: np.ndarray | None = field(default=None, repr=False)  #: per-frame seconds, if known
+
+    @property
+    def anno_offset(self) -> int:
+        """Row of the annotation file that the first box belongs to (0 when unknown).
+
+        The toolkit scores frame ``i`` of the result against annotation row
+        ``startFrame - annoBegin + i`` (e.g. Tiger1: start 6, annoBegin 1 -> offset 5)."""
+        if self.start_frame is None:
+            return 0
+        begin = 1 if self.anno_begin is None else self.anno_begin
+        return max(0, int(self.start_frame) - int(begin))
+
+
+def ivt_affine_to_rect(params, tmplsize) -> np.ndarray:
+    """Convert IVT affine rows (``affparam2mat`` output ``[tx ty a11 a12 a21 a22]``) to boxes,
+    exactly as the OTB toolkit's ``calcRectCenter`` (corners 1 and 3 of the template, floored).
+    """
+    p = np.asarray(params, dtype=np.float64).reshape(-1, 6)
+    w, h = (float(v) for v in np.asarray(tmplsize, dtype=np.float64).ravel()[:2])
+    # M = [p1 p3 p4; p2 p5 p6] applied to (1, u, v)
+    def corner(u, v):
+        return p[:, 0] + p[:, 2] * u + p[:, 3] * v, p[:, 1] + p[:, 4] * u + p[:, 5] * v
+    x1, y1 = corner(-w / 2, -h / 2)
+    x3, y3 = corner(w / 2, h / 2)
+    x1, y1, x3, y3 = np.floor(x1), np.floor(y1), np.floor(x3), np.floor(y3)
+    return np.stack([x1, y1, x3 - x1, y3 - y1], axis=1)
+
+
+def _unwrap(x):
+    while isinstance(x, np.ndarray) and x.dtype == object and x.size >= 1:
+        x = x.ravel()[0]
+    return x
+
+
+def _scalar(x, cast=float):
+    x = _unwrap(x)
+    arr = np.asarray(x).ravel()
+    if arr.size == 0:
+        return None
+    try:
+        return cast(arr[0])
+    except (TypeError, ValueError):
+        return None
+
+
+def _split_mat_name(path: Path) -> tuple[str, str]:
+    stem = path.stem
+    if "_" not in stem:
+        return stem, ""
+    seq, tracker = stem.split("_", 1)
+    return seq, tracker
+
+
+def read_otb_mat(path, tracker: str | None = None, sequence: str | None = None) -> ImportedResult:
+    """Read an OTB toolkit result file ``<seq>_<tracker>.mat`` (types ``rect`` and ``ivtAff``,
+    or a plain numeric box array such as MDNet's ``result``). Boxes come back 1-based."""
+    from scipy.io import loadmat
+
+    path = Path(path)
+    seq_guess, trk_guess = _split_mat_name(path)
+    tracker = tracker or trk_guess or path.stem
+    sequence = sequence or seq_guess
+    try:
+        mat = loadmat(str(path))
+    except Exception as exc:  # scipy raises several types for corrupt files
+        raise ValueError(f"{path}: cannot read MATLAB file ({exc})") from None
+    keys = [k for k in mat if not k.startswith("__")]
+    common = dict(tracker=tracker, sequence=sequence, source=str(path), format="otb-mat")
+    if "results" in mat:
+        rec = mat["results"]
+        # a cell array (1 x runs; OPE has one run) of 1x1 structs
+        while rec.dtype.names is None:
+            if rec.dtype != object or rec.size == 0:
+                raise ValueError(f"{path}: 'results' is neither a struct nor a cell of structs")
+            rec = rec.ravel()[0]
+        rec = rec.ravel()[0]
+        fields = {n: rec[n] for n in rec.dtype.names}
+        if "res" not in fields:
+            raise ValueError(f"{path}: results struct has no 'res' field")
+        res = np.asarray(_unwrap(fields["res"]), dtype=np.float64)
+        rtype = str(np.asarray(_unwrap(fields.get("type", np.array(["rect"])))).ravel()[0]) if "type" in fields else "rect"
+        if rtype == "rect":
+            boxes = res.reshape(-1, 4) if res.size else np.zeros((0, 4))
+        elif rtype == "ivtAff":
+            tmpl = np.asarray(_unwrap(fields.get("tmplsize")), dtype=np.float64).ravel()
+            if tmpl.size < 2:
+                raise ValueError(f"{path}: ivtAff result without tmplsize")
+            boxes = ivt_affine_to_rect(res, tmpl)
+        else:
+            raise ValueError(f"{path}: unsupported result type {rtype!r} (supported: rect, ivtAff)")
+        return ImportedResult(
+            boxes=boxes, result_type=rtype,
+            start_frame=_scalar(fields.get("startFrame"), int) if "startFrame" in fields else None,
+            anno_begin=_scalar(fields.get("annoBegin"), int) if "annoBegin" in fields else None,
+            fps=_scalar(fields.get("fps"), float) if "fps" in fields else None,
+            **common,
+        )
+    numeric = [k for k in keys if isinstance(mat[k], np.ndarray) and mat[k].dtype != object
+               and mat[k].ndim == 2 and mat[k].shape[1] == 4]
+    if len(numeric) == 1:
+        return ImportedResult(boxes=np.asarray(mat[numeric[0]], dtype=np.float64), **common)
+    raise ValueError(f"{path}: no 'results' struct and no single (n, 4) array (variables: {', '.join(keys) or 'none'})")
+
+
+def load_otb_mat(path) -> np.ndarray:
+    """Boxes ``(m, 4)`` (1-based ``x, y, w, h``) of an OTB toolkit ``.mat`` result file."""
+    return read_otb_mat(path).boxes
+
+
+def read_otb_json(path, tracker: str | None = None) -> ImportedResult:
+    """Read a tracker_benchmark per-frame result JSON (``OPE/<TRACKER>/<Seq>.json``)."""
+    path = Path(path)
+    try:
+        with open(path, "r", encoding="utf-8") as fh:
+            data = json.load(fh)
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"{path}: not a JSON result file ({exc})") from None
+    rec = data[0] if isinstance(data, list) and data else data
+    if not isinstance(rec, dict) or "res" not in rec:
+        raise ValueError(f"{path}: no 'res' in this JSON (not a tracker_benchmark result file)")
+    rtype = rec.get("resType", "rect")
+    res = np.asarray(rec["res"], dtype=np.float64)
+    if rtype == "rect":
+        boxes = res.reshape(-1, 4)
+    elif rtype == "ivtAff":
+        boxes = ivt_affine_to_rect(res, rec.get("tmplsize", [32, 32]))
+    else:
+        raise ValueError(f"{path}: unsupported result type {rtype!r} (supported: rect, ivtAff)")
+    start = rec.get("startFrame")
+    return ImportedResult(
+        tracker=tracker or rec.get("tracker") or path.parent.name,
+        sequence=rec.get("seqName") or path.stem,
+        boxes=boxes, source=str(path), format="otb-json", result_type=rtype,
+        start_frame=int(start) if start is not None else None,
+        anno_begin=None,  # unknown in this format; resolved against the annotation length
+        fps=float(rec["fps"]) if rec.get("fps") is not None else None,
+    )
+
+
+def _read_text_result(path: Path, tracker: str) -> ImportedResult:
+    boxes = read_box_file(path)
+    times = None
+    tfile = path.parent / "times" / f"{path.stem}_time.txt"
+    if tfile.is_file():
+        try:
+            times = np.loadtxt(tfile, ndmin=1, dtype=np.float64)
+        except ValueError:
+            times = None
+    return ImportedResult(tracker=tracker, sequence=path.stem, boxes=boxes, source=str(path),
+                          format="text", times=times)
+
+
+def _detect_format(path: Path) -> str:
+    if path.is_file():
+        if path.suffix.lower() == ".mat":
+            return "otb-mat"
+        if path.suffix.lower() == ".json":
+            return "otb-json"
+        return "text"
+    if not path.is_dir():
+        raise FileNotFoundError(f"{path}: no such file or folder")
+    if any(path.glob("*.mat")):
+        return "otb-mat"
+    if any(path.glob("*.txt")):
+        return "text"
+    if any(p.suffix == ".json" and not p.name.startswith("scores") for p in path.glob("*.json")):
+        return "otb-json"
+    for sub in sorted(p for p in path.iterdir() if p.is_dir()):
+        if any(sub.glob("*.mat")):
+            return "otb-mat"
+        if any(sub.glob("*.txt")):
+            return "text"
+        if any(sub.glob("*.json")):
+            return "otb-json"
+    raise ValueError(f"{path}: found no .mat, .json or .txt result files")
+
+
+def import_results(path, fmt: str = "auto", tracker_name: str | None = None,
+                   trackers: Iterable[str] | None = None,
+                   sequences: Iterable[str] | None = None) -> dict[str, dict[str, ImportedResult]]:
+    """Read foreign per-frame results into ``{tracker: {sequence: ImportedResult}}``.
+
+    ``path`` may be:
+
+    * ``fmt="otb-mat"``: one ``<seq>_<tracker>.mat`` file or a folder of them (the toolkit's
+      ``results_OPE``); the tracker name comes from the file name.
+    * ``fmt="otb-json"``: one per-frame JSON or a folder ``<TRACKER>/`` of ``<Seq>.json``
+      (``scores_*`` folders are ignored).
+    * ``fmt="got10k"`` / ``"pysot"`` / ``"text"``: a tracker folder of ``<seq>.txt`` (times
+      in ``times/<seq>_time.txt`` when present), or a root holding several tracker folders.
+
+    ``fmt="auto"`` picks by the files found. ``tracker_name`` renames the (single) tracker;
+    ``trackers`` / ``sequences`` filter case-insensitively. Unreadable files raise
+    ``ValueError`` naming the file (and line, for text).
+    """
+    path = Path(path)
+    fmt = fmt.lower()
+    if fmt in ("got10k", "pysot", "pytracking", "txt"):
+        fmt = "text"
+    if fmt in ("mat", "otb"):
+        fmt = "otb-mat"
+    if fmt == "json":
+        fmt = "otb-json"
+    if fmt == "auto":
+        fmt = _detect_format(path)
+    if fmt not in ("otb-mat", "otb-json", "text"):
+        raise ValueError(f"unknown import format {fmt!r}: expected auto, otb-mat, otb-json, got10k, pysot")
+    if not path.exists():
+        raise FileNotFoundError(f"{path}: no such file or folder")
+    want_trk = None if trackers is None else {t.lower() for t in trackers}
+    want_seq = None if sequences is None else {canonical_name(s) for s in sequences}
+
+    items: list[ImportedResult] = []
+    if fmt == "otb-mat":
+        files = [path] if path.is_file() else sorted(path.rglob("*.mat"))
+        for f in files:
+            seq, trk = _split_mat_name(f)
+            if want_trk is not None and trk.lower() not in want_trk:
+                continue
+            if want_seq is not None and canonical_name(seq) not in want_seq:
+                continue
+            items.append(read_otb_mat(f))
+    elif fmt == "otb-json":
+        files = [path] if path.is_file() else sorted(
+            f for f in path.rglob("*.json") if not any(part.startswith("scores_") for part in f.parts))
+        for f in files:
+            trk = f.parent.name
+            if want_trk is not None and trk.lower() not in want_trk:
+                continue
+            if want_seq is not None and canonical_name(f.stem) not in want_seq:
+                continue
+            items.append(read_otb_json(f, tracker=trk))
+    else:
+        if path.is_file():
+            groups = {path.parent.name: [path]}
+        elif any(path.glob("*.txt")):
+            groups = {path.name: sorted(path.glob("*.txt"))}
+        else:
+            groups = {d.name: sorted(d.glob("*.txt")) for d in sorted(path.iterdir()) if d.is_dir()}
+        for trk, files in groups.items():
+            if want_trk is not None and trk.lower() not in want_trk:
+                continue
+            for f in files:
+                if want_seq is not None and canonical_name(f.stem) not in want_seq:
+                    continue
+                items.append(_read_text_result(f, trk))
+
+    out: dict[str, dict[str, ImportedResult]] = {}
+    for item in items:
+        out.setdefault(item.tracker, {})[item.sequence] = item
+    if tracker_name is not None:
+        if len(out) > 1:
+            raise ValueError(f"{path}: holds {len(out)} trackers ({', '.join(sorted(out))}); "
+                             "pick one with trackers=[...] before renaming it")
+        out = {tracker_name: {s: _renamed(r, tracker_name) for s, r in v.items()} for v in out.values()}
+    return out
+
+
+def _renamed(r: ImportedResult, name: str) -> ImportedResult:
+    r.tracker = name
+    return r
+
+
+def _run_sequence_names(run_dir: Path) -> dict[str, str]:
+    """canonical -> name used by this run (run.json ``sequences``, else the dataset folders)."""
+    names: dict[str, str] = {}
+    meta_path = run_dir / "run.json"
+    meta = {}
+    if meta_path.is_file():
+        try:
+            meta = json.loads(meta_path.read_text(encoding="utf-8"))
+        except ValueError:
+            meta = {}
+    for s in meta.get("sequences") or []:
+        names.setdefault(canonical_name(s), s)
+    dataset = meta.get("dataset")
+    if dataset and Path(dataset).is_dir():
+        for p in Path(dataset).iterdir():
+            if p.is_dir():
+                names.setdefault(canonical_name(p.name), p.name)
+    return names
+
+
+def import_into_run(run_dir, source, tracker_name: str | None = None, fmt: str = "auto",
+                    trackers: Iterable[str] | None = None,
+                    sequences: Iterable[str] | None = None) -> dict[str, list[str]]:
+    """Import foreign results into ``RUN_DIR/results/<tracker>/<seq>.txt`` so that the report
+    scores them with our metrics on our sequences, beside our own runs.
+
+    Sequence files take the run's spelling of the name (``run.json`` sequences, else the
+    dataset's folder names; else the source's). Per-frame times are written to
+    ``times/<seq>_time.txt`` when the source has them (text) or an fps (``1/fps`` per frame).
+    Provenance and the annotation offset of each sequence (Tiger1 starts at frame 6 in the
+    toolkit's files) go to ``results/<tracker>/import.json``. Returns
+    ``{tracker: [sequences written]}``.
+    """
+    run_dir = Path(run_dir)
+    found = import_results(source, fmt=fmt, tracker_name=tracker_name, trackers=trackers, sequences=sequences)
+    if not found:
+        raise ValueError(f"{source}: no results matched (trackers={trackers}, sequences={sequences})")
+    names = _run_sequence_names(run_dir)
+    written: dict[str, list[str]] = {}
+    for trk, seqs in found.items():
+        if not re.fullmatch(r"[\w.+-]+", trk):
+            raise ValueError(f"tracker name {trk!r}: use letters, digits, '.', '+', '-' or '_' only")
+        tdir = run_dir / "results" / trk
+        meta_path = tdir / "import.json"
+        meta = {}
+        if meta_path.is_file():
+            try:
+                meta = json.loads(meta_path.read_text(encoding="utf-8"))
+            except ValueError:
+                meta = {}
+        meta.setdefault("sequences", {})
+        for seq, res in sorted(seqs.items()):
+            name = names.get(canonical_name(seq), seq)
+            write_box_file(tdir / f"{name}.txt", res.boxes)
+            times = None
+            if res.times is not None and len(res.times) == len(res.boxes):
+                times = np.asarray(res.times, dtype=np.float64)
+            elif res.fps and res.fps > 0:
+                times = np.full(len(res.boxes), 1.0 / res.fps)
+            if times is not None:
+                (tdir / "times").mkdir(parents=True, exist_ok=True)
+                np.savetxt(tdir / "times" / f"{name}_time.txt", times, fmt="%.8f")
+            meta["sequences"][name] = {
+                "source": os.path.abspath(res.source),
+                "format": res.format,
+                "source_name": res.sequence,
+                "result_type": res.result_type,
+                "start_frame": res.start_frame,
+                "anno_begin": res.anno_begin,
+                "anno_offset": res.anno_offset,
+                "fps": res.fps,
+                "frames": int(len(res.boxes)),
+            }
+            written.setdefault(trk, []).append(name)
+        meta["imported"] = True
+        meta_path.parent.mkdir(parents=True, exist_ok=True)
+        meta_path.write_text(json.dumps(meta, indent=2, sort_keys=True), encoding="utf-8")
+    return written
+
+
+# --------------------------------------------------------------------------- attributes
+
+
+def load_attribute_table(source) -> dict[str, set[str]]:
+    """Sequence attributes as ``{canonical_name: {"IV", ...}}``.
+
+    ``source`` may be: a text file of ``<Seq>\\t<ATTR>, <ATTR>...`` lines (``attributes-tb100
+    .txt``); a folder of ``<Seq>.txt`` files holding the toolkit's 11 0/1 flags (``anno/att``,
+    flag order IV, OPR, SV, OCC, DEF, MB, FM, IPR, OV, BC, LR); a folder holding ``anno/att``
+    (the otb-results folder); a JSON file ``{seq: [attrs]}``; or a mapping.
+    """
+    if isinstance(source, Mapping):
+        return {canonical_name(k): {a.strip().upper() for a in v} for k, v in source.items()}
+    path = Path(source)
+    if path.is_dir():
+        for cand in (path / "anno" / "att", path / "att"):
+            if cand.is_dir():
+                path = cand
+                break
+        table: dict[str, set[str]] = {}
+        for f in sorted(path.glob("*.txt")):
+            text = f.read_text(encoding="utf-8", errors="replace").strip()
+            parts = [p for p in _SPLIT.split(text) if p]
+            if len(parts) != len(ATTRIBUTE_FLAG_ORDER) or any(p not in ("0", "1") for p in parts):
+                raise ValueError(f"{f}: expected 11 0/1 attribute flags "
+                                 f"({', '.join(ATTRIBUTE_FLAG_ORDER)}), got {text[:60]!r}")
+            table[canonical_name(f.stem)] = {a for a, p in zip(ATTRIBUTE_FLAG_ORDER, parts) if p == "1"}
+        if not table:
+            raise ValueError(f"{source}: no attribute files found")
+        return table
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: no such attribute file or folder")
+    if path.suffix.lower() == ".json":
+        data = json.loads(path.read_text(encoding="utf-8"))
+        return load_attribute_table(data)
+    table = {}
+    known = set(ATTRIBUTES)
+    for lineno, line in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), 1):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        parts = line.split(None, 1)
+        attrs = {a.strip().upper() for a in re.split(r"[,\s]+", parts[1]) if a.strip()} if len(parts) > 1 else set()
+        unknown = attrs - known
+        if unknown:
+            raise ValueError(f"{path}:{lineno}: unknown attribute(s) {', '.join(sorted(unknown))}")
+        table[canonical_name(parts[0])] = attrs
+    return table
