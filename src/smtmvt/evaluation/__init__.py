@@ -1,0 +1,104 @@
+"""OTB one-pass evaluation: run trackers over a benchmark, score them, report.
+
+Running (:mod:`.runner`, :mod:`.trackers`)::
+
+    from smtmvt.evaluation import run_evaluation, available_trackers, register_tracker
+    run = run_evaluation("../shared/data/otb", ["smtmvt", "opencv-csrt"], "/tmp/run", workers=4)
+
+Scoring and reporting (:mod:`.metrics`, :mod:`.published`, :mod:`.report`, :mod:`.plots`)
+are re-exported here too; they are imported on first use, so ``import smtmvt.evaluation``
+stays light (no matplotlib) and works whichever of these modules a checkout has.
+
+Command line: ``smtmvt evaluate`` and ``smtmvt report`` (:mod:`.cli`).
+"""
+
+from __future__ import annotations
+
+import importlib
+
+from .runner import (
+    PairOutcome,
+    PairTask,
+    RunResult,
+    count_lines,
+    result_path,
+    run_evaluation,
+    run_pair,
+    sequence_seed,
+    times_path,
+)
+from .trackers import (
+    EvalTracker,
+    OpenCVTracker,
+    SmtmvtAdapter,
+    UnknownTrackerError,
+    available_trackers,
+    get_factory,
+    make_tracker,
+    register_tracker,
+    to_bgr8,
+    unregister_tracker,
+)
+
+#: Names re-exported lazily from the scoring/report modules: ``name -> module``.
+_LAZY = {
+    # metrics
+    "SUCCESS_THRESHOLDS": "metrics",
+    "PRECISION_THRESHOLDS": "metrics",
+    "overlap_ratio": "metrics",
+    "center_error": "metrics",
+    "success_curve": "metrics",
+    "precision_curve": "metrics",
+    "score_sequence": "metrics",
+    "SequenceScore": "metrics",
+    "aggregate": "metrics",
+    "Aggregate": "metrics",
+    # report / published results
+    "build_report": "report",
+    "import_into_run": "published",
+}
+
+__all__ = [
+    "EvalTracker",
+    "OpenCVTracker",
+    "PairOutcome",
+    "PairTask",
+    "RunResult",
+    "SmtmvtAdapter",
+    "UnknownTrackerError",
+    "available_trackers",
+    "count_lines",
+    "get_factory",
+    "make_tracker",
+    "register_tracker",
+    "result_path",
+    "run_evaluation",
+    "run_pair",
+    "sequence_seed",
+    "times_path",
+    "to_bgr8",
+    "unregister_tracker",
+    *_LAZY,
+]
+
+
+def __getattr__(name: str):
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    try:
+        mod = importlib.import_module(f"{__name__}.{module}")
+    except ImportError as exc:
+        raise AttributeError(
+            f"smtmvt.evaluation.{name} needs smtmvt.evaluation.{module}, which cannot be imported: {exc}"
+        ) from exc
+    try:
+        value = getattr(mod, name)
+    except AttributeError:
+        raise AttributeError(f"smtmvt.evaluation.{module} has no attribute {name!r}") from None
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
