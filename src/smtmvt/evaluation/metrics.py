@@ -17,7 +17,10 @@ What the OTB toolkit does, and what we do
   width is ``max(0, min(right1, right2) - max(x1, x2) + 1)``, which is algebraically
   ``max(0, min(x1 + w1, x2 + w2) - max(x1, x2))``; areas are ``w * h``. got10k's ``rect_iou``
   uses the second form and divides by ``union + eps`` then clips to [0, 1]: for boxes with
-  positive sizes the two agree to ~1e-16 (we compute the MATLAB expression literally).
+  positive sizes the two agree to ~1e-16. We compute the MATLAB expression literally, then
+  cap it at 1 (as got10k): for two *equal non-integer* boxes rounding can make MATLAB's value
+  1 + 1e-16, which would count as a success at threshold 1 (found by the got10k comparison
+  test); integer boxes, such as all of OTB's ground truth, are unaffected.
 * Centre: ``x + (w - 1) / 2`` (MATLAB, got10k, pysot, pytracking all agree).
 * Frame 1's prediction is replaced by the ground truth before scoring (MATLAB and got10k).
 * Predictions that are all NaN or have ``w <= 0`` or ``h <= 0`` take the previous frame's
@@ -103,8 +106,9 @@ def overlap_ratio(a, b) -> np.ndarray:
     Inclusive pixel extents: ``right = x + w - 1``, ``inter_w = max(0, min(right_a, right_b)
     - max(x_a, x_b) + 1)`` (the same number as ``min(x_a + w_a, x_b + w_b) - max(x_a, x_b)``),
     ``IoU = inter / (w_a h_a + w_b h_b - inter)``. No clipping and no epsilon, as MATLAB (got10k
-    adds ``eps`` to the union and clips to [0, 1]; identical to ~1e-16 for positive sizes).
-    Both arrays must use the same origin (0- or 1-based); rows with NaN give NaN.
+    adds ``eps`` to the union and clips to [0, 1]; identical to ~1e-16 for positive sizes),
+    except that the result is capped at 1 (rounding can exceed it for equal non-integer
+    boxes). Both arrays must use the same origin (0- or 1-based); rows with NaN give NaN.
     """
     a = _as_boxes(a, "overlap_ratio(a)")
     b = _as_boxes(b, "overlap_ratio(b)")
@@ -122,7 +126,7 @@ def overlap_ratio(a, b) -> np.ndarray:
         nan = np.isnan(a).any(axis=1) | np.isnan(b).any(axis=1)
         inter = iw * ih
         union = a[:, 2] * a[:, 3] + b[:, 2] * b[:, 3] - inter
-        iou = inter / union
+        iou = np.minimum(inter / union, 1.0)
     iou[nan] = np.nan
     return iou
 

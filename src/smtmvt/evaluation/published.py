@@ -592,12 +592,20 @@ def load_attribute_table(source) -> dict[str, set[str]]:
 
     ``source`` may be: a text file of ``<Seq>\\t<ATTR>, <ATTR>...`` lines (``attributes-tb100
     .txt``); a folder of ``<Seq>.txt`` files holding the toolkit's 11 0/1 flags (``anno/att``,
-    flag order IV, OPR, SV, OCC, DEF, MB, FM, IPR, OV, BC, LR); a folder holding ``anno/att``
-    (the otb-results folder); a JSON file ``{seq: [attrs]}``; or a mapping.
+    flag order IV, OPR, SV, OCC, DEF, MB, FM, IPR, OV, BC, LR); the otb-results folder (its
+    ``attributes-tb100.txt`` is preferred, else ``anno/att``); a JSON file ``{seq: [attrs]}``;
+    or a mapping.
+
+    The two tables of the shared otb-results folder disagree on 7 sequences (Box, Car1, Car2,
+    Coke, Crossing, Human4, Jump; e.g. Crossing's flags lack FM and OPR). The text table matches
+    the benchmark's own per-attribute score files better (FM and MB: exactly), hence the
+    preference.
     """
     if isinstance(source, Mapping):
         return {canonical_name(k): {a.strip().upper() for a in v} for k, v in source.items()}
     path = Path(source)
+    if path.is_dir() and (path / "attributes-tb100.txt").is_file():
+        return load_attribute_table(path / "attributes-tb100.txt")
     if path.is_dir():
         for cand in (path / "anno" / "att", path / "att"):
             if cand.is_dir():

@@ -1,0 +1,309 @@
+"""OTB OPE metrics: hand-computed cases, the MATLAB toolkit's rules, and got10k as a reference."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from smtmvt.evaluation.metrics import (
+    PRECISION_THRESHOLDS,
+    SUCCESS_THRESHOLDS,
+    aggregate,
+    center_error,
+    overlap_ratio,
+    precision_curve,
+    repair_predictions,
+    score_sequence,
+    success_curve,
+    valid_groundtruth,
+)
+from smtmvt.evaluation.published import read_box_file
+
+got10k_metrics = pytest.importorskip("got10k.utils.metrics")
+
+
+def _import_got10k_otb():
+    """``got10k.experiments.otb`` (its ExperimentOTB computes the OTB curves).
+
+    got10k's dataset modules ``import six`` only for ``six.string_types``; when the
+    environment lacks ``six`` a one-attribute stand-in is put in ``sys.modules`` for the
+    import and removed afterwards (the imported got10k modules keep their reference).
+    """
+    import importlib
+    import sys
+    import types
+
+    try:
+        return importlib.import_module("got10k.experiments.otb")
+    except ModuleNotFoundError as exc:
+        if exc.name != "six":
+            pytest.skip(f"got10k.experiments.otb not importable: {exc}")
+    shim = types.ModuleType("six")
+    shim.string_types = (str,)
+    sys.modules["six"] = shim
+    try:
+        for name in [m for m in sys.modules if m.startswith("got10k.")]:
+            if name.startswith(("got10k.datasets", "got10k.experiments")):
+                del sys.modules[name]
+        return importlib.import_module("got10k.experiments.otb")
+    finally:
+        if sys.modules.get("six") is shim:
+            del sys.modules["six"]
+
+
+got10k_otb = _import_got10k_otb()
+
+
+# ----------------------------------------------------------------------------- helpers
+
+
+def matlab_calc_rect_int(A, B):
+    """Line-by-line transcription of the OTB toolkit's rstEval/calcRectInt.m."""
+    leftA, bottomA = A[:, 0], A[:, 1]
+    rightA = leftA + A[:, 2] - 1
+    topA = bottomA + A[:, 3] - 1
+    leftB, bottomB = B[:, 0], B[:, 1]
+    rightB = leftB + B[:, 2] - 1
+    topB = bottomB + B[:, 3] - 1
+    tmp = np.maximum(0, np.minimum(rightA, rightB) - np.maximum(leftA, leftB) + 1) * np.maximum(
+        0, np.minimum(topA, topB) - np.maximum(bottomA, bottomB) + 1
+    )
+    areaA = A[:, 2] * A[:, 3]
+    areaB = B[:, 2] * B[:, 3]
+    return tmp / (areaA + areaB - tmp)
+
+
+class _NoDataset(list):
+    """Just enough of a dataset for ExperimentOTB._calc_curves (which needs none)."""
+
+
+def got10k_scores(pred, gt):
+    """got10k's OTB report for one sequence: boxes[0] = anno[0], rect_iou, center_error, curves."""
+    exp = got10k_otb.ExperimentOTB.__new__(got10k_otb.ExperimentOTB)
+    exp.nbins_iou, exp.nbins_ce = 21, 51
+    boxes = np.array(pred, dtype=float)
+    boxes[0] = gt[0]
+    ious, errs = exp._calc_metrics(boxes, np.array(gt, dtype=float))
+    return exp._calc_curves(ious, errs)
+
+
+def random_boxes(rng, n, integer=False):
+    xy = rng.uniform(1, 300, size=(n, 2))
+    wh = rng.uniform(5, 120, size=(n, 2))
+    b = np.hstack([xy, wh])
+    return np.round(b) if integer else b
+
+
+def perturb(rng, gt, shift=12.0, scale=0.25):
+    p = gt.copy()
+    p[:, :2] += rng.normal(0, shift, size=(len(gt), 2)) + np.cumsum(rng.normal(0, 1.0, size=(len(gt), 2)), 0)
+    p[:, 2:] *= np.exp(rng.normal(0, scale, size=(len(gt), 2)))
+    return p
+
+
+# ----------------------------------------------------------------------------- IoU and centre error
+
+
+def test_overlap_hand_computed_inclusive_extents():
+    # pixels 1..10 x 1..10 and 6..15 x 6..15: 5x5 = 25 shared pixels, union 100 + 100 - 25
+    a = np.array([[1, 1, 10, 10]], float)
+    b = np.array([[6, 6, 10, 10]], float)
+    assert overlap_ratio(a, b)[0] == pytest.approx(25 / 175, abs=1e-15)
+    # touching edges: pixels 1..10 and 11..20 share nothing
+    assert overlap_ratio(a, np.array([[11, 1, 10, 10]], float))[0] == 0.0
+    # one shared column: pixels 1..10 and 10..19
+    assert overlap_ratio(a, np.array([[10, 1, 10, 10]], float))[0] == pytest.approx(10 / 190, abs=1e-15)
+    # identical boxes
+    assert overlap_ratio(a, a)[0] == 1.0
+    # containment: 4x4 inside 10x10
+    assert overlap_ratio(a, np.array([[3, 3, 4, 4]], float))[0] == pytest.approx(16 / 100)
+    # a shift of both boxes changes nothing (0- vs 1-based)
+    assert overlap_ratio(a - [1, 1, 0, 0], b - [1, 1, 0, 0])[0] == overlap_ratio(a, b)[0]
+
+
+def test_center_error_hand_computed():
+    a = np.array([[1, 1, 10, 10]], float)  # centre (5.5, 5.5)
+    b = np.array([[6, 6, 10, 10]], float)  # centre (10.5, 10.5)
+    assert center_error(a, b)[0] == pytest.approx(np.sqrt(50))
+    # centre x + (w - 1) / 2: a 1-px box at x=7 has centre 7; a 3-px box at x=6 also
+    assert center_error(np.array([[7, 7, 1, 1]], float), np.array([[6, 6, 3, 3]], float))[0] == 0.0
+
+
+@pytest.mark.parametrize("integer", [True, False])
+def test_overlap_equals_matlab_transcription_and_got10k(integer):
+    rng = np.random.default_rng(3 + integer)
+    a, b = random_boxes(rng, 4000, integer), random_boxes(rng, 4000, integer)
+    b[::3] = a[::3] + rng.normal(0, 8, size=a[::3].shape)  # many overlapping pairs
+    b[:, 2:] = np.abs(b[:, 2:]) + 1
+    ours = overlap_ratio(a, b)
+    # bit-exact MATLAB (capped at 1: see test_equal_float_boxes_overlap_is_exactly_one)
+    np.testing.assert_array_equal(ours, np.minimum(matlab_calc_rect_int(a, b), 1.0))
+    # got10k: min(x1+w1, x2+w2) - max(x1, x2), union + eps, clip: same up to rounding
+    np.testing.assert_allclose(ours, got10k_metrics.rect_iou(a.copy(), b.copy()), rtol=0, atol=1e-12)
+    assert (ours > 0).sum() > 500
+    np.testing.assert_allclose(center_error(a, b), got10k_metrics.center_error(a, b), rtol=0, atol=1e-12)
+
+
+def test_equal_float_boxes_overlap_is_exactly_one():
+    # MATLAB's formula rounds (x + w - 1) - x + 1 to w + 1 ulp for some non-integer boxes and
+    # gives an IoU above 1, a success at threshold 1; we cap at 1 like got10k.
+    rng = np.random.default_rng(11)
+    a = random_boxes(rng, 2000)
+    assert (matlab_calc_rect_int(a, a) > 1).any()  # the quirk exists
+    ov = overlap_ratio(a, a)
+    assert ov.max() == 1.0 and ov.min() > 1 - 1e-12
+    assert success_curve(overlap_ratio(a, a))[-1] == 0.0
+
+
+def test_overlap_nan_rows_are_nan_not_zero():
+    a = np.array([[1, 1, 10, 10], [np.nan, np.nan, np.nan, np.nan]], float)
+    b = np.array([[1, 1, 10, 10], [1, 1, 10, 10]], float)
+    ov = overlap_ratio(a, b)
+    assert ov[0] == 1.0 and np.isnan(ov[1])
+
+
+def test_curves_strictly_greater_and_less_equal():
+    ov = np.array([0.0, 0.5, 0.5000001, 1.0])
+    s = success_curve(ov)
+    assert s.shape == (21,)
+    assert s[0] == 0.75  # 0.0 is not > 0
+    assert s[10] == 0.5  # threshold 0.5: 0.5 fails, 0.5000001 passes
+    assert s[20] == 0.0  # nothing is > 1
+    err = np.array([0.0, 20.0, 20.5, 60.0])
+    p = precision_curve(err)
+    assert p.shape == (51,)
+    assert p[0] == 0.25 and p[20] == 0.5 and p[21] == 0.75 and p[50] == 0.75
+    np.testing.assert_array_equal(SUCCESS_THRESHOLDS, np.linspace(0, 1, 21))
+    np.testing.assert_array_equal(PRECISION_THRESHOLDS, np.arange(51))
+
+
+# ----------------------------------------------------------------------------- against got10k
+
+
+def _assert_same_as_got10k(pred, gt):
+    ours = score_sequence(pred, gt)
+    succ, prec = got10k_scores(pred, gt)
+    np.testing.assert_allclose(ours.success, succ, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(ours.precision, prec, rtol=0, atol=1e-12)
+    assert ours.auc == pytest.approx(np.mean(succ), abs=1e-9)
+    assert ours.precision20 == pytest.approx(prec[20], abs=1e-9)
+    return ours
+
+
+def test_random_sequences_match_got10k():
+    rng = np.random.default_rng(0)
+    ours_all, succ_all, prec_all = [], [], []
+    for k in range(12):
+        gt = random_boxes(rng, 150, integer=k % 2 == 0)
+        gt = np.cumsum(np.vstack([gt[:1], rng.normal(0, 2, size=(149, 4)) * [1, 1, 0.1, 0.1]]), axis=0)
+        gt[:, 2:] = np.maximum(gt[:, 2:], 4)
+        pred = perturb(rng, gt)
+        ours_all.append(_assert_same_as_got10k(pred, gt))
+        s, p = got10k_scores(pred, gt)
+        succ_all.append(s)
+        prec_all.append(p)
+    agg = aggregate(ours_all)
+    # got10k averages the curves over sequences, then AUC = mean, precision = value at 20 px
+    assert agg.auc == pytest.approx(np.mean(np.mean(succ_all, axis=0)), abs=1e-9)
+    assert agg.precision20 == pytest.approx(np.mean(prec_all, axis=0)[20], abs=1e-9)
+    assert 0.05 < agg.auc < 0.95  # a non-trivial case
+
+
+def test_real_crossing_groundtruth_matches_got10k(otb_dir):
+    gt = read_box_file(otb_dir / "Crossing" / "groundtruth_rect.txt")
+    assert gt.shape == (120, 4)
+    rng = np.random.default_rng(7)
+    for shift in (2.0, 6.0, 15.0):
+        pred = perturb(rng, gt, shift=shift, scale=0.15)
+        ours = _assert_same_as_got10k(pred, gt)
+        assert 0 < ours.auc < 1
+
+
+def test_frame_one_is_replaced_by_groundtruth():
+    gt = np.array([[10, 10, 20, 20]] * 5, float)
+    pred = np.array([[200, 200, 5, 5]] * 5, float)
+    s = score_sequence(pred, gt)
+    assert s.overlaps[0] == 1.0 and np.all(s.overlaps[1:] == 0)
+    assert s.success[0] == pytest.approx(1 / 5)
+    assert score_sequence(pred, gt, replace_first=False).success[0] == 0.0
+
+
+# ----------------------------------------------------------------------------- MATLAB rules
+
+
+def test_nan_and_zero_size_predictions_take_previous_box():
+    gt = np.array([[10, 10, 20, 20]] * 5, float)
+    pred = np.array([
+        [10, 10, 20, 20],
+        [12, 10, 20, 20],
+        [np.nan, np.nan, np.nan, np.nan],  # -> frame 2's box
+        [50, 50, 0, 20],  # zero width -> frame 3's (repaired) box
+        [10, 10, 20, 20],
+    ])
+    fixed = repair_predictions(pred, gt)
+    np.testing.assert_array_equal(fixed[2], pred[1])
+    np.testing.assert_array_equal(fixed[3], pred[1])
+    s = score_sequence(pred, gt)
+    expected = overlap_ratio(pred[1:2], gt[1:2])[0]
+    np.testing.assert_allclose(s.overlaps, [1, expected, expected, expected, 1])
+    # got10k, without the repair, fails frames 3 and 4
+    succ, _ = got10k_scores(pred, gt)
+    assert succ[0] == pytest.approx(3 / 5) and s.success[0] == 1.0
+
+
+def test_invalid_groundtruth_otb_rule():
+    gt = np.array([
+        [10, 10, 20, 20],
+        [10, 10, 20, 20],
+        [0, 0, 0, 0],  # unannotated (Board, Twinnings)
+        [np.nan] * 4,
+        [-3, 10, 20, 20],  # y <= 0: MATLAB's sum(rect_anno > 0, 2) == 4 rejects it too (Biker)
+        [10, 10, 20, 20],
+    ], float)
+    pred = np.array([[10, 10, 20, 20]] * 6, float)
+    pred[1] = [200, 200, 20, 20]  # a miss on a valid frame
+    np.testing.assert_array_equal(valid_groundtruth(gt, "otb"), [1, 1, 0, 0, 0, 1])
+    np.testing.assert_array_equal(valid_groundtruth(gt, "pytracking"), [1, 1, 0, 0, 1, 1])
+
+    s = score_sequence(pred, gt, invalid="otb")
+    # success: invalid frames fail (overlap -1), denominator = all 6 frames
+    assert s.success[0] == pytest.approx(2 / 6)
+    # precision: invalid frames are hits (error -1)
+    assert s.precision[20] == pytest.approx(5 / 6)
+    np.testing.assert_array_equal(s.overlaps[2:5], -1)
+    assert s.avg_overlap == pytest.approx(2 / 3)  # mean over the 3 valid frames
+
+    d = score_sequence(pred, gt, invalid="pytracking")  # dropped: 4 valid frames of 6
+    assert d.n_valid == 4
+    assert d.success[0] == pytest.approx(3 / 4)
+    assert d.precision[20] == pytest.approx(3 / 4)
+
+    f = score_sequence(pred, gt, invalid="fail")  # pytracking's default: failures for both
+    assert f.success[0] == pytest.approx(3 / 6)
+    assert f.precision[20] == pytest.approx(3 / 6)
+
+    with pytest.raises(ValueError, match="invalid="):
+        score_sequence(pred, gt, invalid="nope")
+
+
+def test_length_mismatch_is_an_error():
+    gt = np.zeros((10, 4)) + [1, 1, 5, 5]
+    with pytest.raises(ValueError, match="9 boxes but the ground truth has 10"):
+        score_sequence(gt[:9], gt)
+
+
+def test_aggregate_averages_curves_over_sequences_not_frames():
+    gt_long = np.array([[10, 10, 20, 20]] * 100, float)
+    gt_short = np.array([[10, 10, 20, 20]] * 2, float)
+    perfect = score_sequence(gt_long, gt_long)  # AUC 20/21 (nothing is > 1)
+    miss = gt_short.copy()
+    miss[1] = [500, 500, 20, 20]
+    half = score_sequence(miss, gt_short)
+    agg = aggregate([perfect, half])
+    np.testing.assert_allclose(agg.success, (perfect.success + half.success) / 2)
+    assert agg.auc == pytest.approx((perfect.auc + half.auc) / 2)
+    assert agg.precision20 == pytest.approx((1.0 + 0.5) / 2)
+    # dicts work too (what summary.json stores)
+    agg2 = aggregate([{"success": perfect.success, "precision": perfect.precision},
+                      {"success": half.success, "precision": half.precision}])
+    assert agg2.auc == agg.auc
