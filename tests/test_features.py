@@ -48,12 +48,13 @@ def _crops(image, size, count, rng):
 def gray_patches(camera, camera_tt):
     """32x32 float32 patches: random, camera crops (raw and Tan-Triggs), tie-heavy, constant."""
     rng = np.random.default_rng(1)
+    # 150 patches: more than two of the implementation's 64-patch blocks
     parts = [
-        rng.standard_normal((12, 32, 32)).astype(np.float32) * 3,
-        _crops(camera.astype(np.float32) / 255, (32, 32), 12, rng),
-        _crops(camera_tt, (32, 32), 12, rng),
+        rng.standard_normal((40, 32, 32)).astype(np.float32) * 3,
+        _crops(camera.astype(np.float32) / 255, (32, 32), 40, rng),
+        _crops(camera_tt, (32, 32), 50, rng),
         # few distinct levels: many exactly equal neighbours and axis-aligned gradients
-        rng.integers(0, 3, (6, 32, 32)).astype(np.float32) * np.float32(0.3),
+        rng.integers(0, 3, (18, 32, 32)).astype(np.float32) * np.float32(0.3),
         np.full((1, 32, 32), 1 / 3, dtype=np.float32),
         np.zeros((1, 32, 32), dtype=np.float32),
     ]
@@ -334,9 +335,9 @@ def test_extract_views_constant_patches_have_no_nan():
 
 def test_extract_views_batch_equals_one_at_a_time():
     rng = np.random.default_rng(9)
-    patches = _make_patches(6, rng)
+    patches = _make_patches(150, rng)  # spans three 64-patch blocks
     batch = extract_views(patches)
-    for i in range(patches.n):
+    for i in (0, 1, 63, 64, 100, 127, 128, 149):
         single = extract_views(patches.subset([i]))
         for X, x in zip(batch, single):
             assert_array_equal(X[:, i], x[:, 0])

@@ -31,9 +31,10 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["COLOR_BINS", "color_histograms", "color_view"]
+__all__ = ["COLOR_BINS", "color_histograms", "color_view", "soft_binning_matrix"]
 
 COLOR_BINS = 16  # bins per channel
+BLOCK = 64       # patches per vectorized pass (cache-sized work buffers)
 
 
 _LEVELS = 256  # colors are quantized to 8 bits before binning
@@ -86,12 +87,24 @@ def color_histograms(colors: np.ndarray, bins: int = COLOR_BINS) -> np.ndarray:
         raise ValueError(f"bins must be >= 2, got {bins}")
     bins = int(bins)
     n, h, w, c = colors.shape
-    scaled = np.clip(colors, 0.0, 1.0) * np.float32(_LEVELS - 1) + np.float32(0.5)
-    levels = scaled.astype(np.intp)  # round half up; values are >= 0.5, so trunc == floor
-    # Flat level index per (patch, channel): (patch * C + channel) * 256 + level.
-    levels += (np.arange(n * c, dtype=np.intp) * _LEVELS).reshape(n, 1, 1, c)
-    counts = np.bincount(levels.ravel(), minlength=n * c * _LEVELS)
-    hist = counts.reshape(n * c, _LEVELS).astype(np.float64) @ soft_binning_matrix(bins, _LEVELS)
+    counts = np.empty((n * c, _LEVELS), dtype=np.float64)
+    b = min(n, BLOCK)
+    # Flat level index per (patch, channel): (patch * C + channel) * 256 + level. The
+    # offsets are exact integers in float32 (< 2**24), added after rounding.
+    offsets = np.ascontiguousarray(np.broadcast_to(
+        (np.arange(b * c, dtype=np.float32) * _LEVELS).reshape(b, 1, 1, c), (b, h, w, c)))
+    scaled = np.empty((b, h, w, c), dtype=np.float32)
+    for start in range(0, n, b):  # blocks of patches keep the buffers in cache
+        m = min(b, n - start)
+        buf = scaled[:m]
+        np.multiply(colors[start:start + m], np.float32(_LEVELS - 1), out=buf, casting="unsafe")
+        buf += np.float32(0.5)
+        np.clip(buf, np.float32(0.5), np.float32(_LEVELS - 0.5), out=buf)  # == clip to [0, 1] first
+        np.floor(buf, out=buf)  # round half up to a level in [0, 255]
+        buf += offsets[:m]
+        counts[start * c:(start + m) * c] = np.bincount(
+            buf.astype(np.intp).ravel(), minlength=m * c * _LEVELS).reshape(m * c, _LEVELS)
+    hist = counts @ soft_binning_matrix(bins, _LEVELS)
     return (hist.reshape(n, c * bins) / (h * w)).astype(np.float32)
 
 
