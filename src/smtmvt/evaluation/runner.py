@@ -463,7 +463,8 @@ def _client_for(scheduler):
     if isinstance(scheduler, distributed.Client):
         return scheduler, False
     try:
-        return distributed.Client(scheduler, timeout="30s"), True
+        # connect timeout: dask's distributed.comm.timeouts.connect (30 s by default)
+        return distributed.Client(scheduler), True
     except (OSError, TimeoutError) as exc:
         raise OSError(f"cannot connect to the Dask scheduler at {scheduler}: {exc}") from None
 
