@@ -95,7 +95,7 @@ def run(tmp_path):
 
 
 def test_summary_numbers(run):
-    s = build_report(run["dir"])
+    s = build_report(run["dir"], formats=("png",))
     on_disk = json.loads((run["dir"] / "report" / "summary.json").read_text())
     assert on_disk["trackers"]["alpha"]["auc"] == s["trackers"]["alpha"]["auc"]
     for t in ("alpha", "beta"):
@@ -134,7 +134,7 @@ def test_summary_numbers(run):
 
 
 def test_short_result_file_is_an_error_and_the_rest_is_reported(run):
-    s = build_report(run["dir"])
+    s = build_report(run["dir"], formats=("png",))
     beta = s["trackers"]["beta"]
     assert set(beta["sequences"]) == {"SeqA", "SeqB"} and beta["auc"] is not None
     msg = beta["errors"]["SeqC"]
@@ -152,13 +152,13 @@ def test_short_result_file_is_an_error_and_the_rest_is_reported(run):
 
     # a malformed line names the file and the line
     (run["dir"] / "results" / "alpha" / "SeqB.txt").write_text("1,2,3,4\n1,2,oops,4\n" + "1,2,3,4\n" * 6)
-    s2 = build_report(run["dir"])
+    s2 = build_report(run["dir"], formats=("png",))
     assert "results/alpha/SeqB.txt:2" in s2["trackers"]["alpha"]["errors"]["SeqB"]
     assert set(s2["trackers"]["alpha"]["sequences"]) == {"SeqA", "SeqC"}
 
 
 def test_table_bolds_best_per_row(run):
-    s = build_report(run["dir"])
+    s = build_report(run["dir"], formats=("png",))
     md = (run["dir"] / "report" / "table.md").read_text()
     lines = md.splitlines()
     header = next(l for l in lines if l.startswith("| Sequence |"))
@@ -238,7 +238,7 @@ def test_published_curves_are_labelled_and_kept_out_of_the_table(run):
     assert "FAKE [0.500, OTB-2013 published]" in (rep / "success.svg").read_text()
     assert "FAKE [0.400, OTB-2013 published]" in (rep / "precision_IV.svg").read_text()
     # top=2: our two scored trackers fill the legend, no published curve
-    build_report(run["dir"], published=pub, benchmark="cvpr13", top=2)
+    build_report(run["dir"], published=pub, benchmark="cvpr13", top=2, formats=("svg",))
     assert "FAKE" not in (rep / "success.svg").read_text()
 
 
@@ -258,8 +258,8 @@ def test_max_frames_run_is_scored_on_its_frames_and_flagged(run):
 
 
 def test_report_rebuilds_from_stored_results_only(run):
-    first = build_report(run["dir"])
-    second = build_report(run["dir"])
+    first = build_report(run["dir"], formats=("png",))
+    second = build_report(run["dir"], formats=("png",))
     assert first["trackers"] == second["trackers"]
     with pytest.raises(FileNotFoundError):
         build_report(run["tmp"] / "nope")
