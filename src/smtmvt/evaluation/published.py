@@ -504,20 +504,31 @@ def _renamed(r: ImportedResult, name: str) -> ImportedResult:
     return r
 
 
-def _run_sequence_names(run_dir: Path) -> dict[str, str]:
-    """canonical -> name used by this run (run.json ``sequences``, else the dataset folders)."""
-    names: dict[str, str] = {}
+def _run_meta(run_dir: Path) -> dict:
     meta_path = run_dir / "run.json"
-    meta = {}
     if meta_path.is_file():
         try:
             meta = json.loads(meta_path.read_text(encoding="utf-8"))
+            return meta if isinstance(meta, dict) else {}
         except ValueError:
-            meta = {}
+            return {}
+    return {}
+
+
+def _run_sequence_names(meta: dict) -> dict[str, str]:
+    """canonical -> name used by this run (run.json ``sequences``, else the dataset's names)."""
+    names: dict[str, str] = {}
     for s in meta.get("sequences") or []:
         names.setdefault(canonical_name(s), s)
     dataset = meta.get("dataset")
     if dataset and Path(dataset).is_dir():
+        try:
+            from smtmvt.data import list_dataset
+
+            for name, _folder, _target in list_dataset(dataset):
+                names.setdefault(canonical_name(name), name)
+        except Exception:  # noqa: BLE001 - fall back to the folder names
+            pass
         for p in Path(dataset).iterdir():
             if p.is_dir():
                 names.setdefault(canonical_name(p.name), p.name)
@@ -530,18 +541,22 @@ def import_into_run(run_dir, source, tracker_name: str | None = None, fmt: str =
     """Import foreign results into ``RUN_DIR/results/<tracker>/<seq>.txt`` so that the report
     scores them with our metrics on our sequences, beside our own runs.
 
-    Sequence files take the run's spelling of the name (``run.json`` sequences, else the
-    dataset's folder names; else the source's). Per-frame times are written to
+    Only the run's sequences are imported when ``run.json`` lists them and ``sequences`` is
+    not given. Sequence files take the run's spelling of the name (``run.json`` sequences,
+    else the dataset's sequence names; else the source's). Per-frame times are written to
     ``times/<seq>_time.txt`` when the source has them (text) or an fps (``1/fps`` per frame).
     Provenance and the annotation offset of each sequence (Tiger1 starts at frame 6 in the
     toolkit's files) go to ``results/<tracker>/import.json``. Returns
     ``{tracker: [sequences written]}``.
     """
     run_dir = Path(run_dir)
+    meta = _run_meta(run_dir)
+    if sequences is None and meta.get("sequences"):
+        sequences = list(meta["sequences"])
     found = import_results(source, fmt=fmt, tracker_name=tracker_name, trackers=trackers, sequences=sequences)
     if not found:
         raise ValueError(f"{source}: no results matched (trackers={trackers}, sequences={sequences})")
-    names = _run_sequence_names(run_dir)
+    names = _run_sequence_names(meta)
     written: dict[str, list[str]] = {}
     for trk, seqs in found.items():
         if not re.fullmatch(r"[\w.+-]+", trk):
