@@ -1,0 +1,397 @@
+r"""The SMTMVT sparse-coding problem and its solvers.
+
+Problem (Javanmardi & Qi, ICME 2018, eq. generalOPT2)::
+
+    minimize_{C >= 0, E}  sum_k ||X^k - D^k C^k - E^k||_F^2
+                          + lam * sum_i ||Pi_i(C)||_*
+                          + gamma * (1'C1 + ||E||_1)
+
+with K views; view k has candidates ``X^k`` (d_k, n), templates ``D^k``
+(d_k, N), codes ``C^k`` (N, n) and outliers ``E^k`` (d_k, n).
+``Pi_i(C)`` is the (N, K) matrix whose column k is ``c_i^k``, candidate i's
+code in view k; its nuclear norm couples the views of one candidate.
+
+Default method, ``"admm"`` (exact, provably convergent)
+-------------------------------------------------------
+1. *Exact elimination of E.* For fixed C the problem in E is separable,
+   ``min_e (r - e)^2 + gamma |e|``, solved by ``e = S_{gamma/2}(r)`` with value
+   the Huber function ``h(r) = r^2`` (``|r| <= gamma/2``), ``gamma |r| - gamma^2/4``
+   (beyond). So the problem equals ``min_C H(X - DC) + g1(C) + g2(C)`` with
+   ``H = sum h`` over all residual entries, ``g1 = lam sum_i ||Pi_i(C)||_*``,
+   ``g2 = gamma 1'C1 + indicator(C >= 0)``, and ``E* = S_{gamma/2}(X - D C*)``.
+2. *Splitting.* With ``x = C`` and ``z = (R, Z1, Z2)`` the constraints
+   ``D^k C^k + R^k = X^k``, ``sqrt(beta) (C - Z1) = 0``, ``sqrt(beta) (C - Z2) = 0``
+   make this the standard two-block ADMM form ``min f(z) s.t. A x + B z = c``
+   with ``f(z) = H(R) + g1(Z1) + g2(Z2)`` (separable), ``B = -I`` and
+   ``A = [D; sqrt(beta) I; sqrt(beta) I]`` of full column rank. With scaled
+   duals ``(U_R, U1, U2)`` one iteration is::
+
+       C   <- (D'D + 2 beta I)^-1 [D'(X - R + U_R) + beta (Z1 - U1 + Z2 - U2)]
+       R   <- prox_{H/rho}(X - DC + U_R)      (closed form, prox.huber_prox)
+       Z1  <- SVT_{lam/(rho beta)}(C + U1)    (batched over candidates)
+       Z2  <- max(C + U2 - gamma/(rho beta), 0)
+       U   <- U + (A x + B z - c)
+
+   The C step is an N x N linear system per view, factored once (it does not
+   depend on rho). The R step costs two (d_k x N) x (N x n) products per view.
+3. *Convergence.* f is closed, proper and convex, A is injective, so two-block
+   ADMM converges for every rho > 0: residuals -> 0, objective -> optimum,
+   iterates -> a minimizer (Boyd et al. 2011, sec. 3.2 and appendix A;
+   Eckstein & Bertsekas 1992). rho is adapted by residual balancing (He, Yang &
+   Wang 2000) only during the first 200 iterations, at most 30 times; after that
+   rho is constant and the theorem applies from that point on. No step size is
+   involved (the Lipschitz constant below is only needed by ``"paper"``).
+
+*Stopping rule* (Boyd et al. 2011, sec. 3.3): stop when both
+``r_pri <= tol * max(||A x||, sqrt(beta) ||(Z1, Z2)||, ||X||)`` and
+``r_dual <= tol * rho * max(||D'U_R||, beta ||U1||, beta ||U2||)``
+(plus an absolute floor of 1e-14; the primal scale omits ``||R||`` from
+Boyd's ``||B z||``, which changes it by at most a factor 2 since
+``||R|| ~ ||X - DC|| <= ||X|| + ||A x||``), where ``r_pri = ||A x + B z - c||`` (the
+change of the scaled duals) and ``r_dual = rho ||A'B (z - z_prev)||`` (the
+change of the split variables). Both are relative changes of the iterates.
+On return C is ``Z2`` (exactly >= 0) and E is ``S_{gamma/2}(X - DC)``, the
+optimal E for that C.
+
+The paper's method, ``"paper"``
+-------------------------------
+Proximal (sub)gradient on the joint variable (C, E) with a constant step
+``sigma = 1/L``: the smooth part ``F(C, E) = sum_k ||X^k - D^k C^k - E^k||_F^2``
+has gradient ``-2 [D^k, I]' R^k`` per view (R^k = X^k - D^k C^k - E^k) and
+Hessian ``2 [D^k, I]'[D^k, I]``, block diagonal over views and candidates, whose
+norm is ``2 ||[D^k, I]||_2^2 = 2 (||D^k||_2^2 + 1)`` (because
+``[D, I][D, I]' = D D' + I``). Hence ``L = 2 max_k (||D^k||_2^2 + 1)``. One step::
+
+    C <- max(C - sigma (grad_C F + lam * U_i V_i' + gamma), 0)
+    E <- S_{sigma gamma}(E - sigma grad_E F)
+
+with ``U_i V_i'`` a subgradient of ``||Pi_i(C)||_*`` (thin SVD, nonzero singular
+values). A subgradient step with constant step size does not converge to the
+optimum in general; it stalls above it (about 2% at lam=1). It stops when the
+relative change ``||(C, E)_new - (C, E)|| <= tol ||(C, E)_new||`` or at
+``max_iter``.
+
+Dtypes: inputs may be float32, float64 or integer; all computation is float64
+and the outputs are always float64 (the Gram-matrix SVT needs float64
+accuracy, see :func:`smtmvt.solvers.prox.singular_value_threshold`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._inputs import check_params, check_views, check_warm_start
+from .prox import huber_prox, nuclear_norms, singular_value_threshold, soft_threshold
+
+__all__ = [
+    "SolverInfo",
+    "METHODS",
+    "solve_smtmvt",
+    "smtmvt_objective",
+    "reconstruction_residual",
+    "lipschitz_constant",
+]
+
+METHODS = ("admm", "paper")
+
+_ABS_FLOOR = 1e-14
+_ADAPT_UNTIL = 200  # iterations during which rho may change
+_ADAPT_EVERY = 5
+_ADAPT_MAX = 30
+_ADAPT_RATIO = 5.0
+
+
+@dataclass(frozen=True)
+class SolverInfo:
+    """Diagnostics of one solve.
+
+    Attributes
+    ----------
+    method : str
+    iterations : int
+        Iterations performed.
+    converged : bool
+        Whether the stopping rule was met before ``max_iter``.
+    objective : float
+        ``smtmvt_objective`` of the returned (C, E).
+    primal_residual, dual_residual : float
+        ADMM: the last ``r_pri`` and ``r_dual`` (absolute). ``"paper"``: the
+        last relative change of (C, E), and NaN.
+    rho : float
+        Final ADMM penalty (NaN for ``"paper"``).
+    """
+
+    method: str
+    iterations: int
+    converged: bool
+    objective: float
+    primal_residual: float
+    dual_residual: float
+    rho: float = float("nan")
+
+
+def _check_codes(C, K: int, N: int, n: int) -> np.ndarray:
+    C = np.asarray(C, dtype=np.float64)
+    if C.shape != (K, N, n):
+        raise ValueError(f"C must have shape (K, N, n) = {(K, N, n)}, got {C.shape}")
+    return C
+
+
+def smtmvt_objective(X, D, C, E, lam: float, gamma: float) -> float:
+    """Value of the SMTMVT objective (eq. generalOPT2) at (C, E).
+
+    Parameters
+    ----------
+    X, D : lists of K arrays (d_k, n) and (d_k, N)
+    C : array (K, N, n)
+    E : list of K arrays (d_k, n)
+    lam, gamma : float >= 0
+
+    Returns
+    -------
+    float. The constraint C >= 0 is not checked here (the value of the
+    penalties is computed as written: ``gamma * C.sum()``).
+    """
+    X, D, K, N, n = check_views(X, D)
+    C = _check_codes(C, K, N, n)
+    _, E = check_warm_start(None, E, K, N, n, X)
+    fit = sum(float(np.sum((X[k] - D[k] @ C[k] - E[k]) ** 2)) for k in range(K))
+    nuc = float(nuclear_norms(C.transpose(2, 1, 0)).sum())
+    l1 = float(C.sum()) + sum(float(np.abs(e).sum()) for e in E)
+    return fit + lam * nuc + gamma * l1
+
+
+def reconstruction_residual(X, D, C) -> np.ndarray:
+    """Per-candidate reconstruction error ``sum_k ||D^k c_i^k - x_i^k||^2``.
+
+    The outliers E are *not* subtracted (this is the error used by the
+    paper's likelihood ``p_i = exp(-alpha * residual_i)``).
+
+    Returns
+    -------
+    ndarray (n,), float64, squared feature units.
+    """
+    X, D, K, N, n = check_views(X, D)
+    C = _check_codes(C, K, N, n)
+    out = np.zeros(n)
+    for k in range(K):
+        r = D[k] @ C[k] - X[k]
+        out += np.einsum("ij,ij->j", r, r)
+    return out
+
+
+def lipschitz_constant(D) -> float:
+    """``L = 2 max_k (||D^k||_2^2 + 1)``: Lipschitz constant of the gradient
+    of ``sum_k ||X^k - D^k C^k - E^k||_F^2`` in the joint variable (C, E)."""
+    return 2.0 * max(float(np.linalg.norm(np.asarray(Dk, dtype=np.float64), 2)) ** 2 + 1.0 for Dk in D)
+
+
+def solve_smtmvt(
+    X,
+    D,
+    lam: float = 0.1,
+    gamma: float = 0.25,
+    method: str = "admm",
+    tol: float = 1e-6,
+    max_iter: int = 1000,
+    C0=None,
+    E0=None,
+    return_info: bool = False,
+):
+    """Solve the SMTMVT sparse-coding problem (see the module docstring).
+
+    Parameters
+    ----------
+    X : list of K arrays (d_k, n)
+        Candidate features per view (one column per candidate).
+    D : list of K arrays (d_k, N)
+        Template dictionaries per view (one column per template).
+    lam : float >= 0
+        Weight of the per-candidate nuclear norm across views.
+    gamma : float >= 0
+        Weight of the L1 penalties on C and E.
+    method : {"admm", "paper"}
+        ``"admm"`` (default) reaches the exact optimum; ``"paper"`` is the
+        paper's constant-step proximal subgradient iteration.
+    tol : float > 0
+        Relative tolerance of the stopping rule (see the module docstring).
+    max_iter : int >= 1
+        Iteration cap.
+    C0 : array (K, N, n), optional
+        Warm start for C.
+    E0 : list of K arrays (d_k, n), optional
+        Warm start for E. ``"paper"`` starts from it; ``"admm"`` (where E is
+        eliminated) uses it, with C0, to estimate the dual of the residual
+        block; without E0 it takes the optimal ``S_{gamma/2}(X - D C0)``.
+        Ignored without C0.
+    return_info : bool
+        Also return a :class:`SolverInfo`.
+
+    Returns
+    -------
+    C : ndarray (K, N, n), float64, >= 0
+    E : list of K float64 arrays (d_k, n)
+    info : SolverInfo, only if ``return_info``
+    """
+    X, D, K, N, n = check_views(X, D)
+    check_params(lam=lam, gamma=gamma)
+    if not (np.isfinite(tol) and tol > 0):
+        raise ValueError(f"tol must be > 0, got {tol!r}")
+    if int(max_iter) != max_iter or max_iter < 1:
+        raise ValueError(f"max_iter must be an integer >= 1, got {max_iter!r}")
+    C0, E0 = check_warm_start(C0, E0, K, N, n, X)
+    lam, gamma, max_iter = float(lam), float(gamma), int(max_iter)
+    if method == "admm":
+        C, E, info = _solve_admm(X, D, lam, gamma, tol, max_iter, C0, E0)
+    elif method == "paper":
+        C, E, info = _solve_paper(X, D, lam, gamma, tol, max_iter, C0, E0)
+    else:
+        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    if not return_info:
+        return C, E
+    obj = smtmvt_objective(X, D, C, E, lam, gamma)
+    info = SolverInfo(method=method, objective=obj, **info)
+    return C, E, info
+
+
+def _solve_admm(X, D, lam, gamma, tol, max_iter, C0, E0, rho=2.0, beta=0.5):
+    """ADMM on the E-eliminated problem; see the module docstring."""
+    K, N, n = len(X), D[0].shape[1], X[0].shape[1]
+    G = np.stack([Dk.T @ Dk for Dk in D])  # (K, N, N)
+    DX = np.stack([D[k].T @ X[k] for k in range(K)])  # (K, N, n)
+    Minv = np.linalg.inv(G + 2.0 * beta * np.eye(N))  # SPD, eigenvalues >= 2 beta
+    x_norm = np.sqrt(sum(float(np.vdot(x, x)) for x in X))
+
+    if C0 is None:
+        Z1 = np.zeros((K, N, n))
+        Z2 = np.zeros((K, N, n))
+        U1 = np.zeros((K, N, n))
+        U2 = np.zeros((K, N, n))
+        UR = [np.zeros_like(x) for x in X]
+        DtUR = np.zeros((K, N, n))
+        DtR = DX.copy()  # R = X - D*0
+    else:
+        Z1, Z2 = C0.copy(), C0.copy()
+        UR = []
+        for k in range(K):
+            Rk = X[k] - D[k] @ C0[k]
+            Ek = soft_threshold(Rk, gamma / 2.0) if E0 is None else E0[k]
+            UR.append(np.clip(2.0 * (Rk - Ek) / rho, -gamma / rho, gamma / rho))
+        DtUR = np.stack([D[k].T @ UR[k] for k in range(K)])
+        # Duals estimated from the optimality conditions at C0: U_R is the
+        # Huber gradient / rho; U1 = lam/(rho beta) U V' keeps
+        # SVT(C0 + U1) = C0; U2 = gamma/(rho beta) on the support keeps
+        # Z2 = C0 there; off the support U2 takes the rest of the sum
+        # U1 + U2 = -D'U_R / beta required by the C step. Exact at an optimum
+        # whose Pi_i(C) have no singular values below 1e-6 s_max, approximate
+        # otherwise; any start converges anyway.
+        U1 = (lam / (rho * beta)) * _nuclear_subgradient(C0, rtol=1e-6)
+        t2 = gamma / (rho * beta)
+        U2 = np.where(C0 > 0, t2, np.minimum(-DtUR / beta - U1, t2))
+        DtR = DX - G @ C0
+
+    buf = [np.empty_like(x) for x in X]
+    spare = [np.empty_like(x) for x in X]
+    DtUn = np.empty((K, N, n))
+    r_pri = r_dual = np.inf
+    converged = False
+    n_adapt = 0
+    it = 0
+    for it in range(1, max_iter + 1):
+        # C step: (D'D + 2 beta I) C = D'(X - R + U_R) + beta (Z1 - U1 + Z2 - U2)
+        C = Minv @ (DX - DtR + DtUR + beta * (Z1 - U1 + Z2 - U2))
+        GC = G @ C
+        # R step (Huber prox), written so that only U_R is stored:
+        # V = X - DC + U_R, U_R_new = clip(2V/(2+rho)), R_new = V - U_R_new
+        # (R itself is only needed through D'R, updated below).
+        c, th = 2.0 / (2.0 + rho), gamma / rho
+        dr_sq = 0.0
+        for k in range(K):
+            v = buf[k]
+            np.matmul(D[k], C[k], out=v)
+            np.subtract(X[k], v, out=v)
+            v += UR[k]
+            u_new = np.multiply(v, c, out=spare[k])
+            np.clip(u_new, -th, th, out=u_new)
+            du = np.subtract(u_new, UR[k], out=UR[k])
+            dr_sq += float(np.vdot(du, du))
+            spare[k], UR[k] = du, u_new
+            np.matmul(D[k].T, u_new, out=DtUn[k])
+        DtR_new = DX - GC + DtUR - DtUn
+        # Z steps
+        Z1_new = singular_value_threshold((C + U1).transpose(2, 1, 0), lam / (rho * beta)).transpose(2, 1, 0)
+        Z2_new = np.maximum(C + U2 - gamma / (rho * beta), 0.0)
+        D1 = C - Z1_new
+        D2 = C - Z2_new
+        U1 += D1
+        U2 += D2
+        # residuals
+        r_pri = np.sqrt(dr_sq + beta * (np.vdot(D1, D1) + np.vdot(D2, D2)))
+        r_dual = rho * np.linalg.norm((DtR_new - DtR) + beta * ((Z1_new - Z1) + (Z2_new - Z2)))
+        ax = np.sqrt(max(float(np.vdot(C, GC)), 0.0) + 2.0 * beta * float(np.vdot(C, C)))
+        bz = np.sqrt(beta * (np.vdot(Z1_new, Z1_new) + np.vdot(Z2_new, Z2_new)))
+        scale_pri = max(ax, bz, x_norm)
+        DtUR, DtR, Z1, Z2 = DtUn.copy(), DtR_new, Z1_new, Z2_new
+        scale_dual = rho * max(np.linalg.norm(DtUR), beta * np.linalg.norm(U1), beta * np.linalg.norm(U2))
+        eps_pri = tol * scale_pri + _ABS_FLOOR
+        eps_dual = tol * scale_dual + _ABS_FLOOR
+        if r_pri <= eps_pri and r_dual <= eps_dual:
+            converged = True
+            break
+        # residual balancing on normalized residuals, early iterations only
+        if it <= _ADAPT_UNTIL and it % _ADAPT_EVERY == 0 and n_adapt < _ADAPT_MAX:
+            ratio = (r_pri / eps_pri) / max(r_dual / eps_dual, 1e-300)
+            factor = 2.0 if ratio > _ADAPT_RATIO else (0.5 if ratio < 1.0 / _ADAPT_RATIO else 1.0)
+            if factor != 1.0:
+                rho *= factor
+                U1 /= factor
+                U2 /= factor
+                for u in UR:
+                    u /= factor
+                DtUR /= factor
+                n_adapt += 1
+
+    C = Z2
+    E = [soft_threshold(X[k] - D[k] @ C[k], gamma / 2.0) for k in range(K)]
+    info = dict(iterations=it, converged=converged, primal_residual=float(r_pri),
+                dual_residual=float(r_dual), rho=float(rho))
+    return C, E, info
+
+
+def _nuclear_subgradient(C: np.ndarray, rtol: float = 1e-12) -> np.ndarray:
+    """A subgradient of ``sum_i ||Pi_i(C)||_*`` at C (K, N, n): ``U_i V_i'``
+    over the singular values above ``rtol * max(1, s_max)``."""
+    P = C.transpose(2, 1, 0)  # (n, N, K)
+    U, s, Vt = np.linalg.svd(P, full_matrices=False)
+    keep = s > rtol * np.maximum(1.0, s[..., :1])
+    S = (U * keep[..., None, :]) @ Vt
+    return S.transpose(2, 1, 0)
+
+
+def _solve_paper(X, D, lam, gamma, tol, max_iter, C0, E0):
+    """The paper's constant-step proximal subgradient iteration."""
+    K, N, n = len(X), D[0].shape[1], X[0].shape[1]
+    sigma = 1.0 / lipschitz_constant(D)
+    C = np.zeros((K, N, n)) if C0 is None else np.maximum(C0, 0.0)
+    E = [np.zeros_like(x) for x in X] if E0 is None else [e.copy() for e in E0]
+    change = np.inf
+    converged = False
+    it = 0
+    for it in range(1, max_iter + 1):
+        R = [X[k] - D[k] @ C[k] - E[k] for k in range(K)]
+        gC = np.stack([-2.0 * (D[k].T @ R[k]) for k in range(K)]) + gamma
+        if lam > 0:
+            gC += lam * _nuclear_subgradient(C)
+        C_new = np.maximum(C - sigma * gC, 0.0)
+        E_new = [soft_threshold(E[k] + 2.0 * sigma * R[k], sigma * gamma) for k in range(K)]
+        d_sq = float(np.vdot(C_new - C, C_new - C)) + sum(float(np.vdot(a - b, a - b)) for a, b in zip(E_new, E))
+        x_sq = float(np.vdot(C_new, C_new)) + sum(float(np.vdot(a, a)) for a in E_new)
+        C, E = C_new, E_new
+        change = np.sqrt(d_sq) / max(np.sqrt(x_sq), _ABS_FLOOR)
+        if np.sqrt(d_sq) <= tol * np.sqrt(x_sq) + _ABS_FLOOR:
+            converged = True
+            break
+    info = dict(iterations=it, converged=converged, primal_residual=float(change), dual_residual=float("nan"))
+    return C, E, info

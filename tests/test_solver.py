@@ -1,0 +1,292 @@
+"""Tests of the SMTMVT solver against an independent cvxpy formulation."""
+
+import numpy as np
+import pytest
+
+from smtmvt.solvers import (
+    SolverInfo,
+    lipschitz_constant,
+    reconstruction_residual,
+    smtmvt_objective,
+    solve_smtmvt,
+)
+
+cp = pytest.importorskip("cvxpy")
+
+
+# ---------------------------------------------------------------- helpers
+def make_instance(seed, K=3, N=5, n=4, d_range=(5, 20)):
+    """Small random instance: nonnegative-ish templates with unit columns,
+    candidates = nonnegative mixtures of templates + dense noise + a few outliers."""
+    rng = np.random.default_rng(seed)
+    ds = rng.integers(d_range[0], d_range[1] + 1, K)
+    X, D = [], []
+    for d in ds:
+        Dk = np.abs(rng.standard_normal((d, N))) + 0.3 * rng.standard_normal((d, N))
+        Dk /= np.linalg.norm(Dk, axis=0)
+        Xk = 0.5 * Dk @ np.abs(rng.standard_normal((N, n))) + 0.1 * rng.standard_normal((d, n))
+        Xk += (rng.random((d, n)) < 0.1) * rng.standard_normal((d, n))
+        X.append(Xk)
+        D.append(Dk)
+    return X, D
+
+
+def cvxpy_solve(X, D, lam, gamma):
+    """Reference optimum of eq. generalOPT2 with CLARABEL at high accuracy."""
+    K, N, n = len(X), D[0].shape[1], X[0].shape[1]
+    C = [cp.Variable((N, n), nonneg=True) for _ in range(K)]
+    E = [cp.Variable(x.shape) for x in X]
+    fit = sum(cp.sum_squares(X[k] - D[k] @ C[k] - E[k]) for k in range(K))
+    if K == 1:  # the nuclear norm of an (N, 1) matrix is the L2 norm of the column
+        struct = sum(cp.norm(C[0][:, i], 2) for i in range(n))
+    else:
+        struct = sum(cp.normNuc(cp.hstack([C[k][:, i : i + 1] for k in range(K)])) for i in range(n))
+    l1 = sum(cp.sum(c) for c in C) + sum(cp.sum(cp.abs(e)) for e in E)
+    prob = cp.Problem(cp.Minimize(fit + lam * struct + gamma * l1))
+    prob.solve(solver="CLARABEL", tol_gap_abs=1e-10, tol_gap_rel=1e-10, tol_feas=1e-10)
+    assert prob.status == "optimal"
+    return prob.value, np.stack([c.value for c in C]), [e.value for e in E]
+
+
+def objective_by_loops(X, D, C, E, lam, gamma):
+    """The objective written candidate by candidate, independently of the package."""
+    K, n = len(X), X[0].shape[1]
+    total = 0.0
+    for k in range(K):
+        total += np.linalg.norm(X[k] - D[k] @ C[k] - E[k], "fro") ** 2
+        total += gamma * (C[k].sum() + np.abs(E[k]).sum())
+    for i in range(n):
+        Pi = np.column_stack([C[k][:, i] for k in range(K)])
+        total += lam * np.linalg.norm(Pi, "nuc")
+    return total
+
+
+# ---------------------------------------------------------------- optimality
+LAMS = [0.01, 0.1, 0.3, 1.0]
+GAMMAS = [0.05, 0.25, 1.0]
+
+
+@pytest.mark.parametrize("gamma", GAMMAS)
+@pytest.mark.parametrize("lam", LAMS)
+def test_admm_reaches_cvxpy_optimum(lam, gamma):
+    seed = LAMS.index(lam) * 10 + GAMMAS.index(gamma)
+    X, D = make_instance(seed, K=[3, 4][seed % 2], N=3 + seed % 4, n=2 + seed % 5)
+    ref, C_ref, _ = cvxpy_solve(X, D, lam, gamma)
+
+    C, E, info = solve_smtmvt(X, D, lam=lam, gamma=gamma, tol=1e-8, max_iter=20000, return_info=True)
+
+    assert info.converged
+    assert C.shape == C_ref.shape and C.dtype == np.float64
+    assert [e.shape for e in E] == [x.shape for x in X]
+    assert np.all(C >= 0)
+    obj = objective_by_loops(X, D, C, E, lam, gamma)
+    assert obj == pytest.approx(info.objective, rel=1e-12)
+    # not worse than the optimum ...
+    assert obj <= ref * (1 + 1e-6)
+    # ... and not better than it either (a constraint violation would show here)
+    assert obj >= ref * (1 - 1e-7)
+    # the codes themselves (loosely: the problem need not be strongly convex)
+    assert np.max(np.abs(C - C_ref)) <= 1e-3 * max(1.0, np.abs(C_ref).max())
+
+
+def test_single_view_is_nonnegative_group_lasso():
+    """K = 1: the nuclear norm of an (N, 1) matrix is the L2 norm of the column."""
+    X, D = make_instance(7, K=1, N=4, n=5)
+    ref, C_ref, _ = cvxpy_solve(X, D, 0.3, 0.25)
+    C, E = solve_smtmvt(X, D, lam=0.3, gamma=0.25, tol=1e-9)
+    assert C.shape == (1, 4, 5)
+    assert smtmvt_objective(X, D, C, E, 0.3, 0.25) == pytest.approx(ref, rel=1e-6)
+    assert np.allclose(C, C_ref, atol=1e-4)
+
+
+@pytest.mark.parametrize("K", [1, 3])
+def test_single_candidate(K):
+    X, D = make_instance(11 + K, K=K, N=4, n=1)
+    ref, C_ref, _ = cvxpy_solve(X, D, 0.5, 0.1)
+    C, E = solve_smtmvt(X, D, lam=0.5, gamma=0.1, tol=1e-9)
+    assert C.shape == (K, 4, 1)
+    assert smtmvt_objective(X, D, C, E, 0.5, 0.1) == pytest.approx(ref, rel=1e-6)
+    assert np.allclose(C, C_ref, atol=1e-4)
+
+
+def test_returned_E_is_optimal_for_returned_C():
+    """E = S_{gamma/2}(X - DC) is the exact minimizer over E for fixed C:
+    any perturbation of E can only increase the objective."""
+    X, D = make_instance(3)
+    C, E = solve_smtmvt(X, D, lam=0.1, gamma=0.25)
+    base = smtmvt_objective(X, D, C, E, 0.1, 0.25)
+    rng = np.random.default_rng(0)
+    for _ in range(20):
+        E2 = [e + 1e-3 * rng.standard_normal(e.shape) for e in E]
+        assert smtmvt_objective(X, D, C, E2, 0.1, 0.25) > base
+
+
+def test_zero_input_gives_zero_solution():
+    _, D = make_instance(5, K=3, N=4, n=3)
+    X = [np.zeros((Dk.shape[0], 3)) for Dk in D]
+    for method in ("admm", "paper"):
+        C, E, info = solve_smtmvt(X, D, method=method, return_info=True)
+        assert np.all(C == 0), method
+        assert all(np.all(e == 0) for e in E), method
+        assert info.converged and info.iterations == 1, method
+
+
+def test_large_gamma_gives_zero_codes():
+    """gamma above 2 max|D'X| makes C = 0 optimal (the L1 term dominates)."""
+    X, D = make_instance(6)
+    gamma = 2.0 * max(np.abs(Dk.T @ Xk).max() for Dk, Xk in zip(D, X)) * 1.01
+    C, _ = solve_smtmvt(X, D, lam=0.1, gamma=gamma)
+    assert np.all(C == 0)
+
+
+# ---------------------------------------------------------------- the paper's iteration
+@pytest.mark.parametrize("lam", [0.1, 1.0])
+def test_paper_method_feasible_and_not_below_optimum(lam):
+    X, D = make_instance(21, K=4, N=5, n=6)
+    ref, _, _ = cvxpy_solve(X, D, lam, 0.25)
+    C, E, info = solve_smtmvt(X, D, lam=lam, gamma=0.25, method="paper", max_iter=3000, return_info=True)
+    assert info.method == "paper"
+    assert np.all(C >= 0)
+    gap = (info.objective - ref) / ref
+    assert gap >= -1e-7
+    # Measured on this instance: lam=1 -> gap 3.8% (3.6% after 300 iterations,
+    # still 3.8% after 30000: the constant-step subgradient of the nuclear
+    # norm stalls above the optimum); lam=0.1 -> gap 5.8e-5.
+    assert gap < 0.1
+
+
+def test_admm_beats_paper_at_lam_1():
+    X, D = make_instance(21, K=4, N=5, n=6)
+    _, _, exact = solve_smtmvt(X, D, lam=1.0, return_info=True)
+    _, _, paper = solve_smtmvt(X, D, lam=1.0, method="paper", max_iter=3000, return_info=True)
+    assert exact.objective < paper.objective * (1 - 1e-3)
+
+
+# ---------------------------------------------------------------- api details
+def test_info_and_iteration_cap():
+    X, D = make_instance(8)
+    C, E, info = solve_smtmvt(X, D, lam=0.1, gamma=0.25, max_iter=2, return_info=True)
+    assert isinstance(info, SolverInfo)
+    assert info.iterations == 2 and not info.converged
+    C, E, info = solve_smtmvt(X, D, return_info=True)
+    assert info.converged and 1 < info.iterations < 1000
+    assert info.objective == pytest.approx(smtmvt_objective(X, D, C, E, 0.1, 0.25), rel=1e-12)
+
+
+def test_float32_input_gives_float64_output_and_same_solution():
+    X, D = make_instance(9)
+    C64, E64 = solve_smtmvt(X, D, tol=1e-9)
+    X32 = [x.astype(np.float32) for x in X]
+    D32 = [d.astype(np.float32) for d in D]
+    C32, E32 = solve_smtmvt(X32, D32, tol=1e-9)
+    assert C32.dtype == np.float64 and all(e.dtype == np.float64 for e in E32)
+    # same problem up to the float32 rounding of the data
+    assert np.allclose(C32, C64, atol=1e-4)
+
+
+def test_warm_start_is_used():
+    X, D = make_instance(10, n=6)
+    C, E, opt = solve_smtmvt(X, D, lam=0.3, tol=1e-10, max_iter=10000, return_info=True)
+    # one iteration from the optimum stays near it; one from zero does not
+    _, _, warm1 = solve_smtmvt(X, D, lam=0.3, C0=C, E0=E, max_iter=1, return_info=True)
+    _, _, cold1 = solve_smtmvt(X, D, lam=0.3, max_iter=1, return_info=True)
+    assert warm1.objective - opt.objective < 0.1 * (cold1.objective - opt.objective)
+    # the paper's iteration continues from (C0, E0)
+    _, _, paper5 = solve_smtmvt(X, D, lam=0.3, method="paper", C0=C, E0=E, max_iter=5, return_info=True)
+    _, _, paper5_cold = solve_smtmvt(X, D, lam=0.3, method="paper", max_iter=5, return_info=True)
+    assert paper5.objective - opt.objective < 0.1 * (paper5_cold.objective - opt.objective)
+
+
+def test_any_start_reaches_the_optimum():
+    X, D = make_instance(10, n=6)
+    _, _, opt = solve_smtmvt(X, D, lam=0.3, tol=1e-9, return_info=True)
+    rng = np.random.default_rng(0)
+    C0 = rng.standard_normal((3, 5, 6))  # even infeasible (negative) starts
+    C, _, info = solve_smtmvt(X, D, lam=0.3, tol=1e-9, C0=C0, return_info=True)
+    assert info.converged and np.all(C >= 0)
+    assert info.objective == pytest.approx(opt.objective, rel=1e-7)
+
+
+def test_reconstruction_residual_excludes_E():
+    X, D = make_instance(12)
+    C, E = solve_smtmvt(X, D)
+    res = reconstruction_residual(X, D, C)
+    assert res.shape == (X[0].shape[1],)
+    expected = [sum(np.sum((D[k] @ C[k][:, i] - X[k][:, i]) ** 2) for k in range(len(X))) for i in range(X[0].shape[1])]
+    assert np.allclose(res, expected, rtol=1e-12)
+    assert np.any(np.abs(E[0]) > 0)  # E is nonzero, yet not part of the residual
+
+
+def test_objective_matches_loops():
+    X, D = make_instance(13)
+    rng = np.random.default_rng(1)
+    C = np.abs(rng.standard_normal((3, 5, 4)))
+    E = [rng.standard_normal(x.shape) for x in X]
+    assert smtmvt_objective(X, D, C, E, 0.3, 0.7) == pytest.approx(objective_by_loops(X, D, C, E, 0.3, 0.7), rel=1e-12)
+
+
+def test_lipschitz_constant_bounds_the_gradient():
+    """L = 2 max_k(||D^k||^2 + 1) is attained by the Hessian 2 [D, I]'[D, I]."""
+    _, D = make_instance(14, K=2)
+    L = lipschitz_constant(D)
+    Hmax = max(np.linalg.eigvalsh(2 * np.hstack([Dk, np.eye(Dk.shape[0])]).T @ np.hstack([Dk, np.eye(Dk.shape[0])])).max() for Dk in D)
+    assert L == pytest.approx(Hmax, rel=1e-10)
+
+
+# ---------------------------------------------------------------- input errors
+def test_mismatched_feature_dimension_is_named():
+    X, D = make_instance(15)
+    D[1] = D[1][:-1]
+    with pytest.raises(ValueError, match=r"X\[1\].*D\[1\]"):
+        solve_smtmvt(X, D)
+
+
+def test_mismatched_candidates_is_named():
+    X, D = make_instance(15)
+    X[2] = X[2][:, :-1]
+    with pytest.raises(ValueError, match=r"X\[2\].*candidates"):
+        solve_smtmvt(X, D)
+
+
+def test_mismatched_templates_is_named():
+    X, D = make_instance(15)
+    D[1] = D[1][:, :-1]
+    with pytest.raises(ValueError, match=r"D\[1\].*templates"):
+        solve_smtmvt(X, D)
+
+
+def test_view_count_mismatch():
+    X, D = make_instance(15)
+    with pytest.raises(ValueError, match="views"):
+        solve_smtmvt(X, D[:2])
+
+
+def test_single_array_instead_of_list():
+    X, D = make_instance(15)
+    with pytest.raises(ValueError, match=r"X must be a list"):
+        solve_smtmvt(X[0], D)
+
+
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        (dict(lam=-1.0), "lam"),
+        (dict(gamma=float("nan")), "gamma"),
+        (dict(tol=0.0), "tol"),
+        (dict(max_iter=0), "max_iter"),
+        (dict(method="fast"), "method"),
+        (dict(C0=np.zeros((3, 5, 3))), "C0"),
+        (dict(E0=[np.zeros((2, 2))] * 3), "E0"),
+    ],
+)
+def test_bad_parameters_are_named(kwargs, name):
+    X, D = make_instance(15)
+    with pytest.raises(ValueError, match=name):
+        solve_smtmvt(X, D, **kwargs)
+
+
+def test_nan_input_rejected():
+    X, D = make_instance(15)
+    X[0][0, 0] = np.nan
+    with pytest.raises(ValueError, match=r"X\[0\].*NaN"):
+        solve_smtmvt(X, D)
