@@ -262,10 +262,12 @@ def test_crash_in_one_pair_is_recorded_and_rerun_completes(dataset, tmp_path, re
     assert len(result_path(run_dir, "test-crash", "SquareB").read_text().splitlines()) == 20
 
 
-def test_progress_bars_count_pairs_and_frames(dataset, tmp_path, capsys):
-    run_evaluation(dataset, ["opencv-kcf"], tmp_path / "run", sequences=["SquareA", "SquareC"], report=False)
+@pytest.mark.parametrize("workers", [1, 2])
+def test_progress_bars_count_pairs_and_frames(dataset, tmp_path, capsys, workers):
+    run_evaluation(dataset, ["opencv-kcf"], tmp_path / "run", sequences=["SquareA", "SquareC"], report=False,
+                   workers=workers)
     err = capsys.readouterr().err
-    assert "2/2" in err and "40/40" in err
+    assert "2/2" in err and "40/40" in err and "41/40" not in err
 
 
 # ----------------------------------------------------------------------------- bad input

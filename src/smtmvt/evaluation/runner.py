@@ -75,7 +75,6 @@ import traceback
 import uuid
 import zlib
 from concurrent.futures import ProcessPoolExecutor
-from concurrent.futures import as_completed as _futures_as_completed
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Iterable
@@ -604,11 +603,11 @@ def run_evaluation(
         elif scheduler is not None:
             _run_dask(tasks, scheduler, finish)
         elif workers > 1:
-            _run_pool(tasks, workers, finish)
+            _run_pool(tasks, workers, finish, bars)
         else:
             for task in tasks:
                 bars.start(task)
-                finish(task, run_pair(task, on_frame=bars.frames))
+                finish(task, run_pair(task, on_frame=bars.frame_counter(task)))
     finally:
         bars.close()
 
@@ -618,23 +617,77 @@ def run_evaluation(
     return result
 
 
-def _run_pool(tasks, workers, finish):
-    ctx = multiprocessing.get_context("spawn")
-    with _worker_environ():
-        pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)), mp_context=ctx)
-        futures = {pool.submit(run_pair, t): t for t in tasks}
+_PROGRESS_QUEUE = None  # set in pool worker processes by _init_pool_worker
+
+
+def _init_pool_worker(queue) -> None:
+    global _PROGRESS_QUEUE
+    _PROGRESS_QUEUE = queue
+
+
+def _run_pair_reporting(task: PairTask) -> PairOutcome:
+    """:func:`run_pair` in a pool worker, sending ``(pair key, frames)`` to the driver at
+    most every 0.5 s (and once at the end) for the frames progress bar."""
+    queue = _PROGRESS_QUEUE
+    if queue is None:
+        return run_pair(task)
+    key = (task.tracker, task.sequence.name)
+    state = {"n": 0, "t": time.monotonic()}
+
+    def on_frame(k: int) -> None:
+        state["n"] += k
+        now = time.monotonic()
+        if now - state["t"] >= 0.5:
+            queue.put((key, state["n"]))
+            state["n"], state["t"] = 0, now
+
     try:
-        for fut in _futures_as_completed(futures):
-            task = futures[fut]
+        return run_pair(task, on_frame=on_frame)
+    finally:
+        if state["n"]:
+            queue.put((key, state["n"]))
+
+
+def _run_pool(tasks, workers, finish, bars):
+    import queue as _queue
+    from concurrent.futures import FIRST_COMPLETED, wait
+
+    ctx = multiprocessing.get_context("spawn")
+    progress_queue = ctx.Queue() if bars.enabled else None
+    with _worker_environ():
+        pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)), mp_context=ctx,
+                                   initializer=_init_pool_worker, initargs=(progress_queue,))
+        futures = {pool.submit(_run_pair_reporting, t): t for t in tasks}
+
+    def drain():
+        if progress_queue is None:
+            return
+        while True:
             try:
-                outcome = fut.result()
-            except Exception as exc:  # noqa: BLE001 - a worker died (crash, killed, unpicklable)
-                finish(task, None, f"{task.tracker} on {task.sequence.name}: worker failed: {_describe(exc)}")
-            else:
-                finish(task, outcome)
+                key, k = progress_queue.get_nowait()
+            except (_queue.Empty, OSError, ValueError):
+                return
+            bars.frames(k, key)
+
+    try:
+        pending = set(futures)
+        while pending:
+            done, pending = wait(pending, timeout=0.25, return_when=FIRST_COMPLETED)
+            drain()
+            for fut in done:
+                task = futures[fut]
+                try:
+                    outcome = fut.result()
+                except Exception as exc:  # noqa: BLE001 - a worker died (crash, killed, unpicklable)
+                    finish(task, None, f"{task.tracker} on {task.sequence.name}: worker failed: {_describe(exc)}")
+                else:
+                    finish(task, outcome)
     except BaseException:
         pool.shutdown(wait=False, cancel_futures=True)
         raise
+    finally:
+        if progress_queue is not None:
+            progress_queue.close()
     pool.shutdown(wait=True)
 
 
@@ -666,11 +719,13 @@ def _run_dask(tasks, scheduler, finish):
 
 
 class _Progress:
-    """Two tqdm bars: pairs done and frames done (frames of parallel pairs arrive per pair)."""
+    """Two tqdm bars on stderr: pairs done, and frames done. Frames arrive per frame in this
+    process, every 0.5 s from pool workers, and per finished pair from a Dask cluster."""
 
     def __init__(self, n_pairs: int, n_frames: int, enabled: bool):
         self.enabled = enabled and n_pairs > 0
-        self._frames_of_current = 0
+        self._counted: dict = {}  # pair key -> frames already shown
+        self._finished: set = set()
         if not self.enabled:
             return
         from tqdm.auto import tqdm
@@ -681,23 +736,28 @@ class _Progress:
                          dynamic_ncols=True, smoothing=0.05)
 
     def start(self, task: PairTask) -> None:
-        self._frames_of_current = 0
         if self.enabled:
             self.pairs.set_postfix_str(f"{task.tracker} / {task.sequence.name}", refresh=True)
 
-    def frames(self, k: int) -> None:
-        self._frames_of_current += k
-        if self.enabled:
-            self.fbar.update(k)
+    def frames(self, k: int, key=None) -> None:
+        if not self.enabled or key in self._finished:
+            return
+        self._counted[key] = self._counted.get(key, 0) + k
+        self.fbar.update(k)
+
+    def frame_counter(self, task: PairTask):
+        key = (task.tracker, task.sequence.name)
+        return lambda k: self.frames(k, key)
 
     def pair_done(self, task: PairTask, outcome) -> None:
+        key = (task.tracker, task.sequence.name)
+        self._finished.add(key)
         if not self.enabled:
             return
         # a failed or remote pair adds what it did not report frame by frame
-        remaining = task.n_frames - self._frames_of_current
+        remaining = task.n_frames - self._counted.pop(key, 0)
         if remaining > 0:
             self.fbar.update(remaining)
-        self._frames_of_current = 0
         self.pairs.set_postfix_str(f"{task.tracker} / {task.sequence.name}", refresh=False)
         self.pairs.update(1)
 
