@@ -176,3 +176,21 @@ def test_evaluate_on_real_data(otb_dir, tmp_path, capsys):
     assert [float(v) for v in res[0].split(",")] == [float(v) for v in gt_first.replace("\t", ",").split(",")]
     # Jumping is grayscale PNG: the peers get 3-channel BGR and still run
     assert len((tmp_path / "run" / "results" / "opencv-kcf" / "Jumping.txt").read_text().splitlines()) == 30
+
+
+def test_report_imports_published_results(otb_dir, otb_results_dir, tmp_path, capsys):
+    """`report --import` scores a published tracker's per-frame results on our sequences:
+    Struck's OTB-2013 run averages 0.67 overlap on Crossing (data README)."""
+    run_dir = tmp_path / "run"
+    rc = main(["evaluate", "--dataset", str(otb_dir), "--trackers", "opencv-kcf", "--sequences", "Crossing",
+               "--out", str(run_dir), "--no-report", "--quiet"])
+    assert rc == 0
+    capsys.readouterr()
+    rc = main(["report", str(run_dir), "--import", f"{otb_results_dir / 'OPE' / 'STRUCK'}:struck-2013"])
+    out, err = capsys.readouterr()
+    assert rc == 0, err
+    assert "imported struck-2013" in out
+    summary = json.loads((run_dir / "report" / "summary.json").read_text())
+    crossing = summary["trackers"]["struck-2013"]["sequences"]["Crossing"]
+    assert crossing["avg_overlap"] == pytest.approx(0.67, abs=0.01)
+    assert "struck-2013" in (run_dir / "report" / "table.md").read_text()

@@ -13,7 +13,9 @@
 
 ``smtmvt report RUN_DIR``
     Rebuilds ``RUN_DIR/report/`` from the stored results (nothing is re-run); ``--import``
-    adds foreign per-frame results (published trackers) to the run first.
+    adds foreign per-frame results (published trackers) to the run first. Exit status 0 when
+    every pair was scored, 1 when the report has gaps (errors of the run, or result files
+    that cannot be used; printed, and listed in the report), 2 when no report could be built.
 """
 
 from __future__ import annotations
@@ -195,8 +197,8 @@ def cmd_report(args) -> int:
         invalid=args.invalid,
     )
     _print_report(summary, run_dir)
-    errors = [e for e in summary.get("errors", []) if e.get("stage") != "run"]
+    errors = summary.get("errors", [])
     for e in errors:
-        where = "/".join(str(x) for x in (e.get("tracker"), e.get("sequence")) if x)
+        where = " / ".join(str(x) for x in (e.get("tracker"), e.get("sequence")) if x)
         print(f"  error: {where}: {e.get('error')}", file=sys.stderr)
-    return 0
+    return 1 if errors else 0
