@@ -194,3 +194,18 @@ def test_report_imports_published_results(otb_dir, otb_results_dir, tmp_path, ca
     crossing = summary["trackers"]["struck-2013"]["sequences"]["Crossing"]
     assert crossing["avg_overlap"] == pytest.approx(0.67, abs=0.01)
     assert "struck-2013" in (run_dir / "report" / "table.md").read_text()
+
+
+def test_package_reexports_lazily():
+    code = (
+        "import sys, smtmvt.evaluation as e\n"
+        "assert 'matplotlib' not in sys.modules\n"
+        "from smtmvt.evaluation import build_report, import_into_run, score_sequence, run_evaluation\n"
+        "assert build_report.__module__ == 'smtmvt.evaluation.report'\n"
+        "assert set(e.__all__) <= set(dir(e))\n"
+        "for name in e.__all__: getattr(e, name)\n"
+        "print('ok')\n"
+    )
+    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1] / "src"))
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120)
+    assert out.returncode == 0 and out.stdout.strip() == "ok", out.stderr

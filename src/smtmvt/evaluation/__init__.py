@@ -42,20 +42,15 @@ from .trackers import (
 
 #: Names re-exported lazily from the scoring/report modules: ``name -> module``.
 _LAZY = {
-    # metrics
-    "SUCCESS_THRESHOLDS": "metrics",
-    "PRECISION_THRESHOLDS": "metrics",
-    "overlap_ratio": "metrics",
-    "center_error": "metrics",
-    "success_curve": "metrics",
-    "precision_curve": "metrics",
-    "score_sequence": "metrics",
-    "SequenceScore": "metrics",
-    "aggregate": "metrics",
-    "Aggregate": "metrics",
-    # report / published results
-    "build_report": "report",
-    "import_into_run": "published",
+    **{name: "metrics" for name in (
+        "SUCCESS_THRESHOLDS", "PRECISION_THRESHOLDS", "INVALID_MODES", "overlap_ratio", "center_error",
+        "success_curve", "precision_curve", "valid_groundtruth", "repair_predictions", "SequenceScore",
+        "score_sequence", "Aggregate", "aggregate")},
+    **{name: "published" for name in (
+        "load_published_scores", "published_trackers", "import_results", "import_into_run",
+        "load_attribute_table", "read_otb_mat", "read_otb_json", "ImportedResult")},
+    **{name: "report" for name in ("build_report", "load_groundtruth_source")},
+    **{name: "plots" for name in ("plot_curves", "select_curves", "Curve")},
 }
 
 __all__ = [
