@@ -426,6 +426,13 @@ def _open_sequences(dataset_dir: Path, sequences):
     return seqs, errors, unknown
 
 
+def _check_options(factory, options: dict) -> None:
+    """Build one tracker with ``options`` (and a seed when accepted) and drop it."""
+    if accepts_keyword(factory, "seed"):
+        options = {**options, "seed": 0}
+    factory(**options)
+
+
 def _resolve_trackers(trackers) -> tuple[list, list]:
     names = [t.strip() for t in (trackers.split(",") if isinstance(trackers, str) else trackers)]
     names = [t for t in _merge_unique([], names) if t]
@@ -566,6 +573,11 @@ def run_evaluation(
     for tname, factory in known:
         options = dict(tracker_options.get(tname, {}))
         base_seed = options.pop("seed", 0) or 0
+        try:  # bad options fail here once, not once per sequence in the workers
+            _check_options(factory, options)
+        except Exception as exc:  # noqa: BLE001
+            record(tname, None, f"{tname}: cannot be created with options {options}: {_describe(exc)}")
+            continue
         for seq in seqs:
             n = len(seq) if max_frames is None else min(len(seq), int(max_frames))
             rpath = result_path(run_dir, tname, seq.name)
