@@ -423,6 +423,7 @@ def test_normalize_columns_constant_columns_never_nan():
     assert not np.isnan(out).any()
     assert_array_equal(out, 0)
     assert_array_equal(normalize_columns(np.zeros((7, 3), np.float32)), 0)
+    assert normalize_columns(np.zeros((0, 3))).shape == (0, 3)
 
 
 def test_normalize_columns_keeps_tiny_real_variation():

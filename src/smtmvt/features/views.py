@@ -170,6 +170,8 @@ def normalize_columns(V: np.ndarray) -> np.ndarray:
     V = np.asarray(V)
     if V.ndim != 2:
         raise ValueError(f"expected a (d, n) matrix, got shape {V.shape}")
+    if V.shape[0] == 0:
+        return np.zeros(V.shape, dtype=np.float32)
     X = V.astype(np.float64)
     X -= X.mean(axis=0, keepdims=True)
     norm = np.sqrt(np.einsum("ij,ij->j", X, X))
