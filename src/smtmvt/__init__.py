@@ -11,5 +11,19 @@ Public API::
 __version__ = "0.1.0"
 
 from .config import TrackerConfig  # noqa: E402
+from .data import Sequence, SequenceError, open_sequence, read_boxes, write_boxes  # noqa: E402
+from .solvers import solve_smtmvt  # noqa: E402
+from .tracker import Tracker, TrackResult  # noqa: E402
 
-__all__ = ["TrackerConfig", "__version__"]
+__all__ = [
+    "Sequence",
+    "SequenceError",
+    "TrackResult",
+    "Tracker",
+    "TrackerConfig",
+    "__version__",
+    "open_sequence",
+    "read_boxes",
+    "solve_smtmvt",
+    "write_boxes",
+]

@@ -40,7 +40,7 @@ class TrackerConfig:
         Height, width (pixels) to which each candidate is warped for the HOG,
         LBP and color views.
     solver : str
-        ``"fista"`` (accelerated proximal gradient with the exact prox, default)
+        ``"admm"`` (exact ADMM, converges to the optimum; default)
         or ``"paper"`` (the paper's subgradient step).
     solver_tol : float
         Relative change of the iterates at which the solver stops.
@@ -64,8 +64,8 @@ class TrackerConfig:
     views: tuple = ("intensity", "color", "hog", "lbp")
     affine_std: tuple = (0.01, 0.0005, 0.0005, 0.01, 4.0, 4.0)
     feature_size: tuple = (32, 32)
-    solver: str = "fista"
-    solver_tol: float = 1e-4
+    solver: str = "admm"
+    solver_tol: float = 1e-3
     solver_max_iter: int = 200
     update_angle: float = 30.0
     occlusion_fraction: float = 0.25

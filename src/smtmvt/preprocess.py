@@ -1,0 +1,85 @@
+"""Per-frame preprocessing: validate a frame, make its gray and color planes.
+
+A frame is ``(H, W)`` (grayscale) or ``(H, W, 3)`` (RGB; a 4th alpha channel is
+dropped), of dtype ``uint8``, ``uint16`` or float. Floats are taken as values in
+``[0, 1]`` when their maximum is at most 1 and as ``[0, 255]`` otherwise. The
+Tan-Triggs normalization (:func:`smtmvt.features.tan_triggs`) runs once here on
+the whole gray frame, before any candidate is cropped.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import cv2
+import numpy as np
+
+from .features import tan_triggs
+
+__all__ = ["PreparedFrame", "prepare_frame", "to_unit_range"]
+
+
+@dataclass(frozen=True)
+class PreparedFrame:
+    """A frame ready for candidate extraction.
+
+    Attributes
+    ----------
+    normalized : (H, W) float32 Tan-Triggs output (values in [-10, 10]).
+    color : (H, W, C) float32 in [0, 1]; C = 3 (RGB) or 1 (grayscale frame).
+    """
+
+    normalized: np.ndarray
+    color: np.ndarray
+
+    @property
+    def shape(self) -> tuple:
+        return self.normalized.shape
+
+
+def to_unit_range(frame: np.ndarray, where: str = "frame") -> np.ndarray:
+    """Validate ``frame`` and return it as float32 in [0, 1], ``(H, W)`` or ``(H, W, 3)``."""
+    a = np.asarray(frame)
+    if a.ndim == 3 and a.shape[2] == 4:
+        a = a[:, :, :3]
+    if a.ndim == 3 and a.shape[2] == 1:
+        a = a[:, :, 0]
+    if not (a.ndim == 2 or (a.ndim == 3 and a.shape[2] == 3)):
+        raise ValueError(f"{where}: expected an (H, W) or (H, W, 3) image, got shape {a.shape}")
+    if a.shape[0] < 2 or a.shape[1] < 2:
+        raise ValueError(f"{where}: image of shape {a.shape} is too small")
+    if a.dtype == np.uint8:
+        return a.astype(np.float32) / 255.0
+    if a.dtype == np.uint16:
+        return a.astype(np.float32) / 65535.0
+    if a.dtype == np.bool_ or np.issubdtype(a.dtype, np.integer):
+        raise ValueError(f"{where}: unsupported integer dtype {a.dtype} (use uint8 or uint16)")
+    if not np.issubdtype(a.dtype, np.floating):
+        raise ValueError(f"{where}: unsupported dtype {a.dtype}")
+    f = a.astype(np.float32)
+    if not np.all(np.isfinite(f)):
+        raise ValueError(f"{where}: image contains NaN or infinite values")
+    if f.max(initial=0.0) > 1.0:
+        f = f / 255.0
+    return np.clip(f, 0.0, 1.0)
+
+
+def prepare_frame(frame: np.ndarray, where: str = "frame") -> PreparedFrame:
+    """Validate ``frame`` and compute its Tan-Triggs gray plane and color plane.
+
+    A color frame whose three channels are identical is treated as grayscale
+    (``color`` gets one channel), so the color view uses its gray fallback on
+    gray sequences stored as RGB files.
+    """
+    f = to_unit_range(frame, where)
+    if f.ndim == 3:
+        same = np.array_equal(f[..., 0], f[..., 1]) and np.array_equal(f[..., 0], f[..., 2])
+        if same:
+            f = f[..., 0]
+    if f.ndim == 2:
+        gray = f
+        color = f[:, :, None]
+    else:
+        gray = cv2.cvtColor(f, cv2.COLOR_RGB2GRAY)
+        color = f
+    return PreparedFrame(normalized=tan_triggs(gray), color=np.ascontiguousarray(color))

@@ -1,0 +1,211 @@
+"""The SMTMVT tracker: a thin object over the pure functions of the package.
+
+Data flows one way, one stage per module::
+
+    frame --preprocess--> Tan-Triggs gray + color planes
+          --motion------> n affine particles (random walk)
+          --warp--------> candidate patches, one batched remap per plane
+          --features----> K views, (d_k, n) normalized columns
+          --solvers-----> codes C (K, N, n) and outliers E over the templates
+          --likelihood--> p_i = exp(-alpha * sum_k ||D^k c_i^k - x_i^k||^2)
+          --state-------> best candidate = result; template update; resampling
+
+Usage (like OpenCV's trackers)::
+
+    tracker = Tracker(TrackerConfig(seed=0))
+    tracker.init(first_frame, (x, y, w, h))      # 0-based pixels
+    for frame in frames:
+        result = tracker.update(frame)           # TrackResult
+        x, y, w, h = result.box
+"""
+
+from __future__ import annotations
+
+import time
+from collections import defaultdict
+from contextlib import contextmanager
+from dataclasses import dataclass
+
+import numpy as np
+
+from .config import TrackerConfig
+from .features import Patches, extract_views, intensity_template_size
+from .geometry import affine_to_box, box_to_affine, clip_box_to_image
+from .likelihood import likelihoods
+from .motion import propagate, resample
+from .preprocess import PreparedFrame, prepare_frame
+from .solvers import reconstruction_residual, solve_smtmvt
+from .templates import TemplateSet
+from .warp import inside_fraction, warp_patches
+
+__all__ = ["Tracker", "TrackResult"]
+
+
+@dataclass(frozen=True)
+class TrackResult:
+    """Outcome of one :meth:`Tracker.update`.
+
+    Attributes
+    ----------
+    box : (x, y, w, h) floats, 0-based pixels.
+    score : likelihood ``exp(-alpha * residual)`` of the chosen candidate, in
+        (0, 1]; low values mean the target is poorly explained (lost or occluded).
+    residual : its reconstruction residual ``sum_k ||D^k c^k - x^k||^2``.
+    occluded : the outlier term flagged this frame as occluded.
+    template_replaced : index of the template replaced this frame, or None.
+    frame_index : 0-based index of the frame since :meth:`Tracker.init`.
+    """
+
+    box: tuple
+    score: float
+    residual: float
+    occluded: bool
+    template_replaced: int | None
+    frame_index: int
+
+
+class Tracker:
+    """SMTMVT tracker (Javanmardi & Qi, ICME 2018).
+
+    Parameters
+    ----------
+    config : TrackerConfig, optional
+        All parameters; the paper's defaults when omitted.
+    **overrides
+        Shorthand for ``config.replace(**overrides)``.
+    """
+
+    def __init__(self, config: TrackerConfig | None = None, **overrides):
+        config = config or TrackerConfig()
+        self.config = config.replace(**overrides) if overrides else config
+        self._initialized = False
+        #: Seconds spent per stage since the last :meth:`init` (for ``bench/``).
+        self.timings = defaultdict(float)
+
+    # -- stages ------------------------------------------------------------
+    @contextmanager
+    def _timed(self, stage: str):
+        t0 = time.perf_counter()
+        try:
+            yield
+        finally:
+            self.timings[stage] += time.perf_counter() - t0
+
+    def _views(self, frame: PreparedFrame, params: np.ndarray) -> list:
+        """Candidate views ``[(d_k, m) float32]`` of the states ``params (m, 6)``."""
+        fs = self.config.feature_size
+        with self._timed("warp"):
+            patches = Patches(
+                intensity=warp_patches(frame.normalized, params, self._intensity_size),
+                gray=warp_patches(frame.normalized, params, fs),
+                color=warp_patches(frame.color, params, fs).reshape(len(params), fs[0], fs[1], -1),
+            )
+        with self._timed("features"):
+            return extract_views(patches, self.config.views)
+
+    def _template_states(self, state: np.ndarray) -> np.ndarray:
+        """The N template states: the exact first box, then N-1 jittered copies.
+
+        The jitter moves the box corners by about N(0, 0.6^2) pixels (L1-APG).
+        """
+        N = self.config.n_templates
+        rng = np.random.default_rng(None if self.config.seed is None else self.config.seed + 1)
+        states = np.repeat(state[None], N, axis=0)
+        if N > 1:
+            x, y, w, h = affine_to_box(state)
+            jit = rng.normal(0.0, 0.6, size=(N - 1, 4))
+            boxes = np.array([x, y, w, h]) + jit
+            boxes[:, 2:] = np.maximum(boxes[:, 2:], 1.0)
+            states[1:] = box_to_affine(boxes)
+        return states
+
+    # -- public API --------------------------------------------------------
+    def init(self, frame: np.ndarray, box) -> None:
+        """Start tracking the object in ``box`` of ``frame``.
+
+        Parameters
+        ----------
+        frame : (H, W) or (H, W, 3) RGB image, uint8 / uint16 / float.
+        box : (x, y, w, h) 0-based pixels; w and h must be positive and at
+            least a quarter of the box must lie inside the frame.
+
+        Calling ``init`` again re-initializes the tracker on a new target.
+        """
+        b = np.asarray(box, dtype=np.float64).reshape(-1)
+        if b.size != 4 or not np.all(np.isfinite(b)):
+            raise ValueError(f"init: box must be 4 finite numbers (x, y, w, h), got {box!r}")
+        if b[2] <= 0 or b[3] <= 0:
+            raise ValueError(f"init: box {tuple(b)} has zero or negative size")
+        prepared = prepare_frame(frame, "init frame")
+        inside, _ = clip_box_to_image(b, prepared.shape)
+        if inside < 0.25:
+            raise ValueError(
+                f"init: box {tuple(b)} is mostly outside the {prepared.shape[1]}x{prepared.shape[0]} image "
+                f"({inside:.0%} inside)"
+            )
+        cfg = self.config
+        self.timings = defaultdict(float)
+        self._intensity_size = intensity_template_size(b[2], b[3])
+        self._rng = np.random.default_rng(cfg.seed)
+        self._state = box_to_affine(b)
+        self._box = tuple(float(v) for v in b)
+        t_states = self._template_states(self._state)
+        self._templates = TemplateSet([np.array(v, dtype=np.float32) for v in self._views(prepared, t_states)])
+        self._particles = np.repeat(self._state[None], cfg.n_particles, axis=0)
+        self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
+        self._frame_index = 0
+        self._intensity_index = cfg.views.index("intensity") if "intensity" in cfg.views else None
+        self._initialized = True
+
+    def update(self, frame: np.ndarray) -> TrackResult:
+        """Track the target into ``frame``; returns a :class:`TrackResult`."""
+        if not self._initialized:
+            raise RuntimeError("update called before init")
+        cfg = self.config
+        self._frame_index += 1
+        with self._timed("preprocess"):
+            prepared = prepare_frame(frame, f"frame {self._frame_index}")
+
+        particles = resample(self._particles, self._weights, cfg.n_particles)
+        particles = propagate(particles, cfg.affine_std, self._rng)
+        X = self._views(prepared, particles)
+        D = self._templates.dictionaries
+        with self._timed("solve"):
+            C, E = solve_smtmvt(X, D, lam=cfg.lam, gamma=cfg.gamma, method=cfg.solver,
+                                tol=cfg.solver_tol, max_iter=cfg.solver_max_iter)
+            residual = reconstruction_residual(X, D, C)
+        # A candidate whose centre left the image is not a valid observation.
+        valid = inside_fraction(particles, prepared.shape) >= 0.5
+        p = likelihoods(residual, cfg.alpha, valid)
+
+        if not np.any(p > 0):
+            # Nothing explains the frame: keep the previous state (no NaN ever leaves).
+            self._particles = np.repeat(self._state[None], cfg.n_particles, axis=0)
+            self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
+            return TrackResult(self._box, 0.0, float("inf"), True, None, self._frame_index)
+
+        best = int(np.argmax(p))
+        with self._timed("update"):
+            decision = self._templates.update(
+                [Xk[:, best] for Xk in X], C[:, :, best], [Ek[:, best] for Ek in E],
+                update_angle=cfg.update_angle, occlusion_fraction=cfg.occlusion_fraction,
+                intensity_view=self._intensity_index,
+            )
+        self._state = particles[best].copy()
+        self._box = tuple(float(v) for v in affine_to_box(self._state))
+        self._particles, self._weights = particles, p
+        return TrackResult(
+            box=self._box,
+            score=float(np.exp(-cfg.alpha * residual[best])),
+            residual=float(residual[best]),
+            occluded=decision.occluded,
+            template_replaced=decision.replaced,
+            frame_index=self._frame_index,
+        )
+
+    @property
+    def box(self) -> tuple:
+        """Current box ``(x, y, w, h)``, 0-based pixels."""
+        if not self._initialized:
+            raise RuntimeError("tracker not initialized")
+        return self._box

@@ -1,0 +1,120 @@
+"""The Tracker object end to end: API, determinism, bad input, real tracking."""
+
+import numpy as np
+import pytest
+
+from smtmvt import Tracker, TrackerConfig
+from smtmvt.demo import make_demo_sequence
+from smtmvt.evaluation.metrics import overlap_ratio
+
+FAST = TrackerConfig(n_particles=100, seed=0)
+
+
+@pytest.fixture(scope="module")
+def demo():
+    return make_demo_sequence(n_frames=120)
+
+
+def _track(frames, box, config):
+    t = Tracker(config)
+    t.init(frames[0], box)
+    out = [tuple(box)]
+    for f in frames[1:]:
+        r = t.update(f)
+        assert np.all(np.isfinite(r.box)) and 0.0 <= r.score <= 1.0
+        out.append(r.box)
+    return np.array(out)
+
+
+def test_same_seed_same_boxes_other_seed_other_boxes(demo):
+    a = _track(demo.frames[:8], demo.groundtruth[0], FAST)
+    b = _track(demo.frames[:8], demo.groundtruth[0], FAST)
+    c = _track(demo.frames[:8], demo.groundtruth[0], FAST.replace(seed=1))
+    np.testing.assert_array_equal(a, b)
+    assert not np.array_equal(a, c)
+
+
+def test_tracks_demo_sequence(demo):
+    """The built-in sequence (scale, rotation, illumination, occlusion, blur).
+
+    Measured mean overlap with the paper's defaults (400 particles, seed 0):
+    see the closing note of issue 2; threshold set below it with margin.
+    """
+    boxes = _track(demo.frames, demo.groundtruth[0], TrackerConfig(seed=0))
+    overlap = overlap_ratio(boxes, demo.groundtruth)
+    assert overlap.mean() > 0.6, overlap.mean()
+
+
+def test_static_frame_stays_put(demo):
+    f = demo.frames[0]
+    boxes = _track([f] * 6, demo.groundtruth[0], FAST)
+    assert overlap_ratio(boxes, np.repeat(demo.groundtruth[:1], 6, axis=0)).min() > 0.8
+
+
+@pytest.mark.parametrize("box", [(10, 10, 0, 20), (10, 10, 20, -3), (np.nan, 1, 2, 3), (1, 2, 3)])
+def test_init_rejects_bad_box(demo, box):
+    with pytest.raises(ValueError, match="box"):
+        Tracker(FAST).init(demo.frames[0], box)
+
+
+def test_init_rejects_box_mostly_outside(demo):
+    with pytest.raises(ValueError, match="mostly outside"):
+        Tracker(FAST).init(demo.frames[0], (-40, -40, 50, 50))
+
+
+def test_update_before_init():
+    with pytest.raises(RuntimeError, match="before init"):
+        Tracker(FAST).update(np.zeros((20, 20), np.uint8))
+
+
+@pytest.mark.parametrize("frame,match", [
+    (np.zeros((5, 5, 2), np.uint8), "shape"),
+    (np.full((30, 30), np.nan, np.float32), "NaN"),
+    (np.zeros((30, 30), np.int64), "dtype"),
+])
+def test_bad_frames_name_the_problem(demo, frame, match):
+    t = Tracker(FAST)
+    t.init(demo.frames[0], demo.groundtruth[0])
+    with pytest.raises(ValueError, match=match):
+        t.update(frame)
+
+
+def test_gray_and_16bit_frames_track_like_8bit(demo):
+    gray8 = demo.frames[:6].mean(axis=3).astype(np.uint8)
+    gray16 = gray8.astype(np.uint16) * 257
+    a = _track(list(gray8), demo.groundtruth[0], FAST)
+    b = _track(list(gray16), demo.groundtruth[0], FAST)
+    np.testing.assert_allclose(a, b, atol=1e-6)
+    assert overlap_ratio(a, demo.groundtruth[:6]).mean() > 0.5
+
+
+def test_blank_and_partly_outside_never_nan(demo):
+    t = Tracker(FAST)
+    t.init(demo.frames[0], (300.0, 200.0, 40.0, 40.0))  # partly outside a 320x240 frame
+    for f in [np.zeros_like(demo.frames[0])] * 3 + list(demo.frames[1:3]):
+        r = t.update(f)
+        assert np.all(np.isfinite(r.box)) and np.isfinite(r.score)
+
+
+def test_reinit_restarts_on_new_target(demo):
+    t = Tracker(FAST)
+    t.init(demo.frames[0], demo.groundtruth[0])
+    t.update(demo.frames[1])
+    t.init(demo.frames[0], (20.0, 20.0, 30.0, 30.0))
+    assert t.box == (20.0, 20.0, 30.0, 30.0)
+    r = t.update(demo.frames[0])
+    assert overlap_ratio(np.array([r.box]), np.array([[20.0, 20, 30, 30]]))[0] > 0.7
+
+
+@pytest.mark.slow
+def test_tracks_real_crossing(otb_dir):
+    """OTB Crossing (120 frames); the paper reports 0.78 average overlap.
+
+    Threshold set from measurement (see the closing note of issue 2).
+    """
+    from smtmvt.data import open_sequence
+
+    seq = open_sequence(otb_dir / "Crossing")
+    boxes = _track([seq[i] for i in range(len(seq))], seq.first_box, TrackerConfig(seed=0))
+    overlap = overlap_ratio(boxes, seq.groundtruth)
+    assert overlap.mean() > 0.6, overlap.mean()
