@@ -118,3 +118,17 @@ def test_tracks_real_crossing(otb_dir):
     boxes = _track([seq[i] for i in range(len(seq))], seq.first_box, TrackerConfig(seed=0))
     overlap = overlap_ratio(boxes, seq.groundtruth)
     assert overlap.mean() > 0.6, overlap.mean()
+
+
+def test_prepare_frame_keeps_the_channel_count_it_is_given():
+    from smtmvt.preprocess import prepare_frame
+
+    rgb = np.zeros((20, 30, 3), np.uint8)
+    rgb[..., 0] = 200
+    gray_as_rgb = np.repeat(np.arange(600, dtype=np.uint8).reshape(20, 30)[..., None], 3, axis=2)
+    assert prepare_frame(rgb).color.shape == (20, 30, 3)
+    assert prepare_frame(gray_as_rgb).color.shape == (20, 30, 1)
+    assert prepare_frame(gray_as_rgb, channels=3).color.shape == (20, 30, 3)
+    one = prepare_frame(rgb, channels=1)
+    assert one.color.shape == (20, 30, 1)
+    np.testing.assert_allclose(one.color[..., 0], 200 / 255 * 0.299, atol=2e-3)

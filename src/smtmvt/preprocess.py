@@ -64,22 +64,31 @@ def to_unit_range(frame: np.ndarray, where: str = "frame") -> np.ndarray:
     return np.clip(f, 0.0, 1.0)
 
 
-def prepare_frame(frame: np.ndarray, where: str = "frame") -> PreparedFrame:
+def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None = None) -> PreparedFrame:
     """Validate ``frame`` and compute its Tan-Triggs gray plane and color plane.
 
-    A color frame whose three channels are identical is treated as grayscale
-    (``color`` gets one channel), so the color view uses its gray fallback on
-    gray sequences stored as RGB files.
+    Parameters
+    ----------
+    frame : (H, W) or (H, W, 3) image.
+    where : name of the frame for error messages.
+    channels : number of color channels to produce, 1 or 3, or None to decide
+        from the frame: a color frame whose three channels are identical is
+        then treated as grayscale, so gray sequences stored as RGB files use the
+        color view's gray fallback. The tracker decides once, on its first
+        frame, and passes the answer for every later frame so that the color
+        view keeps one dimension through the sequence.
     """
     f = to_unit_range(frame, where)
-    if f.ndim == 3:
-        same = np.array_equal(f[..., 0], f[..., 1]) and np.array_equal(f[..., 0], f[..., 2])
-        if same:
-            f = f[..., 0]
-    if f.ndim == 2:
-        gray = f
-        color = f[:, :, None]
+    if channels is None:
+        gray_input = f.ndim == 2 or (
+            np.array_equal(f[..., 0], f[..., 1]) and np.array_equal(f[..., 0], f[..., 2])
+        )
+        channels = 1 if gray_input else 3
+    if channels not in (1, 3):
+        raise ValueError(f"{where}: channels must be 1 or 3, got {channels!r}")
+    gray = f if f.ndim == 2 else cv2.cvtColor(f, cv2.COLOR_RGB2GRAY)
+    if channels == 1:
+        color = gray[:, :, None]
     else:
-        gray = cv2.cvtColor(f, cv2.COLOR_RGB2GRAY)
-        color = f
+        color = f if f.ndim == 3 else np.repeat(f[:, :, None], 3, axis=2)
     return PreparedFrame(normalized=tan_triggs(gray), color=np.ascontiguousarray(color))

@@ -27,6 +27,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
+from threadpoolctl import ThreadpoolController
 
 from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
@@ -81,6 +82,15 @@ class Tracker:
         self._initialized = False
         #: Seconds spent per stage since the last :meth:`init` (for ``bench/``).
         self.timings = defaultdict(float)
+        self._threadpools = ThreadpoolController() if self.config.blas_threads else None
+
+    @contextmanager
+    def _blas_limit(self):
+        if self._threadpools is None:
+            yield
+        else:
+            with self._threadpools.limit(limits=self.config.blas_threads, user_api="blas"):
+                yield
 
     # -- stages ------------------------------------------------------------
     @contextmanager
@@ -131,12 +141,22 @@ class Tracker:
 
         Calling ``init`` again re-initializes the tracker on a new target.
         """
+        with self._blas_limit():
+            self._init(frame, box)
+
+    def update(self, frame: np.ndarray) -> TrackResult:
+        """Track the target into ``frame``; returns a :class:`TrackResult`."""
+        with self._blas_limit():
+            return self._update(frame)
+
+    def _init(self, frame: np.ndarray, box) -> None:
         b = np.asarray(box, dtype=np.float64).reshape(-1)
         if b.size != 4 or not np.all(np.isfinite(b)):
             raise ValueError(f"init: box must be 4 finite numbers (x, y, w, h), got {box!r}")
         if b[2] <= 0 or b[3] <= 0:
             raise ValueError(f"init: box {tuple(b)} has zero or negative size")
         prepared = prepare_frame(frame, "init frame")
+        self._channels = prepared.color.shape[2]
         inside, _ = clip_box_to_image(b, prepared.shape)
         if inside < 0.25:
             raise ValueError(
@@ -157,14 +177,13 @@ class Tracker:
         self._intensity_index = cfg.views.index("intensity") if "intensity" in cfg.views else None
         self._initialized = True
 
-    def update(self, frame: np.ndarray) -> TrackResult:
-        """Track the target into ``frame``; returns a :class:`TrackResult`."""
+    def _update(self, frame: np.ndarray) -> TrackResult:
         if not self._initialized:
             raise RuntimeError("update called before init")
         cfg = self.config
         self._frame_index += 1
         with self._timed("preprocess"):
-            prepared = prepare_frame(frame, f"frame {self._frame_index}")
+            prepared = prepare_frame(frame, f"frame {self._frame_index}", self._channels)
 
         particles = resample(self._particles, self._weights, cfg.n_particles)
         particles = propagate(particles, cfg.affine_std, self._rng)
