@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import time
 
 import numpy as np
@@ -10,14 +11,17 @@ __all__ = ["add_parser", "run_track", "parse_box"]
 
 
 def parse_box(text: str) -> tuple:
-    """Parse ``"x,y,w,h"`` (commas or spaces) into 4 floats; ValueError naming the text."""
+    """Parse ``"x,y,w,h"`` (commas or spaces) into 4 floats.
+
+    Raises ``argparse.ArgumentTypeError`` (a ValueError for argparse) naming the text.
+    """
     parts = text.replace(",", " ").split()
     try:
         vals = tuple(float(p) for p in parts)
     except ValueError:
         vals = ()
     if len(vals) != 4 or not np.all(np.isfinite(vals)):
-        raise ValueError(f"--box must be four numbers x,y,w,h, got {text!r}")
+        raise argparse.ArgumentTypeError(f"--box must be four numbers x,y,w,h, got {text!r}")
     return vals
 
 
