@@ -20,38 +20,8 @@ from smtmvt.evaluation.metrics import (
 from smtmvt.evaluation.published import read_box_file
 
 got10k_metrics = pytest.importorskip("got10k.utils.metrics")
-
-
-def _import_got10k_otb():
-    """``got10k.experiments.otb`` (its ExperimentOTB computes the OTB curves).
-
-    got10k's dataset modules ``import six`` only for ``six.string_types``; when the
-    environment lacks ``six`` a one-attribute stand-in is put in ``sys.modules`` for the
-    import and removed afterwards (the imported got10k modules keep their reference).
-    """
-    import importlib
-    import sys
-    import types
-
-    try:
-        return importlib.import_module("got10k.experiments.otb")
-    except ModuleNotFoundError as exc:
-        if exc.name != "six":
-            pytest.skip(f"got10k.experiments.otb not importable: {exc}")
-    shim = types.ModuleType("six")
-    shim.string_types = (str,)
-    sys.modules["six"] = shim
-    try:
-        for name in [m for m in sys.modules if m.startswith("got10k.")]:
-            if name.startswith(("got10k.datasets", "got10k.experiments")):
-                del sys.modules[name]
-        return importlib.import_module("got10k.experiments.otb")
-    finally:
-        if sys.modules.get("six") is shim:
-            del sys.modules["six"]
-
-
-got10k_otb = _import_got10k_otb()
+# its ExperimentOTB computes the OTB curves (the module imports six, a pinned test dependency)
+got10k_otb = pytest.importorskip("got10k.experiments.otb")
 
 
 # ----------------------------------------------------------------------------- helpers
