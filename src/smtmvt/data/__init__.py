@@ -19,7 +19,7 @@ Main entry points::
 """
 
 from .attributes import ATTRIBUTE_NAMES, ATTRIBUTES, OTB_FLAG_ORDER, attributes_of, load_attributes
-from .boxes import parse_boxes, read_boxes, write_boxes
+from .boxes import parse_boxes, read_boxes, write_boxes, write_text_atomic
 from .dataset import list_dataset, open_dataset
 from .errors import SequenceError, SequenceWarning
 from .frames import IMAGE_EXTENSIONS, read_frame
@@ -54,4 +54,5 @@ __all__ = [
     "read_boxes",
     "read_frame",
     "write_boxes",
+    "write_text_atomic",
 ]

@@ -69,7 +69,6 @@ import json
 import multiprocessing
 import os
 import sys
-import tempfile
 import time
 import traceback
 import uuid
@@ -81,6 +80,7 @@ from typing import Callable, Iterable
 
 import numpy as np
 
+from ..data import write_boxes, write_text_atomic
 from .trackers import UnknownTrackerError, accepts_keyword, get_factory
 
 __all__ = [
@@ -129,27 +129,9 @@ def sequence_seed(sequence: str, base: int = 0) -> int:
     return (zlib.crc32(sequence.encode("utf-8")) ^ int(base)) & 0x7FFFFFFF
 
 
-def _atomic_write_text(path: Path, text: str) -> None:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(tmp)
-        raise
-
-
 def write_times(path, times) -> Path:
     """Seconds per frame, one per line, atomically."""
-    _atomic_write_text(Path(path), "".join(f"{float(t):.9f}\n" for t in times))
-    return Path(path)
+    return write_text_atomic(path, "".join(f"{float(t):.9f}\n" for t in times))
 
 
 # --------------------------------------------------------------------------- one pair
@@ -305,7 +287,7 @@ class _ErrorLog:
         return [{"tracker": t, "sequence": s, "error": e} for (t, s), e in self.entries.items()]
 
     def save(self) -> None:
-        _atomic_write_text(self.path, json.dumps(self.as_list(), indent=1) + "\n")
+        write_text_atomic(self.path, json.dumps(self.as_list(), indent=1) + "\n")
 
 
 def _merge_unique(old: Iterable, new: Iterable) -> list:
@@ -343,7 +325,7 @@ def _update_run_json(run_dir: Path, dataset: Path, trackers, sequences, attribut
             "max_frames": max_frames,
         }
     )
-    _atomic_write_text(path, json.dumps(info, indent=1) + "\n")
+    write_text_atomic(path, json.dumps(info, indent=1) + "\n")
     return info
 
 
@@ -598,8 +580,6 @@ def run_evaluation(
     def finish(task: PairTask, outcome: PairOutcome | None, failure: str | None = None):
         if outcome is not None and outcome.ok:
             write_times(times_path(run_dir, task.tracker, task.sequence.name), outcome.times)
-            from ..data import write_boxes
-
             write_boxes(result_path(run_dir, task.tracker, task.sequence.name), outcome.boxes)
             log.clear(task.tracker, task.sequence.name)
             result.done.append((task.tracker, task.sequence.name))
