@@ -104,6 +104,15 @@ def test_flag_file_order_is_the_toolkits(tmp_path):
         attributes_of(table, "football")
 
 
+def test_results_folder_prefers_the_table_file(tmp_path):
+    att = tmp_path / "anno" / "att"
+    att.mkdir(parents=True)
+    (att / "Crossing.txt").write_text("0,0,1,0,1,0,0,0,0,1,0\n")  # SV, DEF, BC
+    assert load_attributes(tmp_path) == {"Crossing": ("SV", "DEF", "BC")}  # root with anno/att/
+    (tmp_path / "attributes-tb100.txt").write_text("Crossing\tSV, DEF, FM, OPR, BC\n")
+    assert load_attributes(tmp_path) == {"Crossing": ("SV", "DEF", "FM", "OPR", "BC")}
+
+
 def test_flag_file_errors(tmp_path):
     (tmp_path / "Bad.txt").write_text("1,0,1\n")
     with pytest.raises(SequenceError, match=r"Bad\.txt.*11 flags"):

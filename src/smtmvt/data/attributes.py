@@ -10,6 +10,9 @@ Two file layouts are read:
   by commas and/or spaces, e.g. ``Basketball\tIV, OCC, DEF, OPR, BC``
   (``attributes-tb100.txt``).
 
+The OTB results folder holding both (``attributes-tb100.txt`` and
+``anno/att/``) is accepted too: its table file is read (see below).
+
 Either way the codes come back in the display order :data:`ATTRIBUTES`, so
 tables from both layouts compare equal.
 
@@ -52,6 +55,9 @@ ATTRIBUTE_NAMES = {
     "LR": "Low Resolution",
 }
 
+# The table file of the OTB results folder, preferred to its ``anno/att`` flags.
+_TABLE_FILE = "attributes-tb100.txt"
+
 _RANK = {code: i for i, code in enumerate(ATTRIBUTES)}
 _SPLIT = re.compile(r"[,\s]+")
 
@@ -62,8 +68,10 @@ def load_attributes(path) -> dict:
     Parameters
     ----------
     path : path
-        An ``att`` folder of per-sequence flag files (an ``anno`` folder that
-        holds ``att/`` is accepted too), or a table file (see module notes).
+        An ``att`` folder of per-sequence flag files (a folder that holds
+        ``att/`` or ``anno/att/`` is accepted too), a table file (see module
+        notes), or a folder holding the table file ``attributes-tb100.txt``
+        (the OTB results folder), which is then preferred to its ``anno/att``.
 
     Returns
     -------
@@ -81,9 +89,13 @@ def load_attributes(path) -> dict:
         attribute code, a duplicate name; naming the file (and line).
     """
     path = Path(path)
-    if path.is_dir():
-        if (path / "att").is_dir():
-            path = path / "att"
+    if path.is_dir() and (path / _TABLE_FILE).is_file():
+        table = _read_table_file(path / _TABLE_FILE)
+    elif path.is_dir():
+        for sub in (path / "anno" / "att", path / "att"):
+            if sub.is_dir():
+                path = sub
+                break
         table = _read_flag_folder(path)
     elif path.is_file():
         table = _read_table_file(path)

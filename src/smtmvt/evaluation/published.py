@@ -41,6 +41,8 @@ from typing import Iterable, Mapping
 
 import numpy as np
 
+from ..data.attributes import ATTRIBUTE_NAMES, ATTRIBUTES, load_attributes
+
 __all__ = [
     "ATTRIBUTES",
     "ATTRIBUTE_NAMES",
@@ -61,23 +63,6 @@ __all__ = [
     "load_attribute_table",
 ]
 
-#: The 11 OTB attributes, in the order of the paper's figures.
-ATTRIBUTES = ("IV", "SV", "OCC", "DEF", "MB", "FM", "IPR", "OPR", "OV", "BC", "LR")
-#: Order of the 0/1 flags in the toolkit's ``anno/att/<Seq>.txt`` files.
-ATTRIBUTE_FLAG_ORDER = ("IV", "OPR", "SV", "OCC", "DEF", "MB", "FM", "IPR", "OV", "BC", "LR")
-ATTRIBUTE_NAMES = {
-    "IV": "Illumination Variation",
-    "SV": "Scale Variation",
-    "OCC": "Occlusion",
-    "DEF": "Deformation",
-    "MB": "Motion Blur",
-    "FM": "Fast Motion",
-    "IPR": "In-Plane Rotation",
-    "OPR": "Out-of-Plane Rotation",
-    "OV": "Out-of-View",
-    "BC": "Background Clutters",
-    "LR": "Low Resolution",
-}
 #: benchmark key -> (directory suffix, label)
 BENCHMARKS = {
     "cvpr13": ("cvpr13", "OTB-2013"),
@@ -609,7 +594,9 @@ def load_attribute_table(source) -> dict[str, set[str]]:
     .txt``); a folder of ``<Seq>.txt`` files holding the toolkit's 11 0/1 flags (``anno/att``,
     flag order IV, OPR, SV, OCC, DEF, MB, FM, IPR, OV, BC, LR); the otb-results folder (its
     ``attributes-tb100.txt`` is preferred, else ``anno/att``); a JSON file ``{seq: [attrs]}``;
-    or a mapping.
+    or a mapping. Files and folders are read by :func:`smtmvt.data.load_attributes` (errors:
+    :class:`~smtmvt.data.SequenceError`, a ``ValueError``); a missing path raises
+    ``FileNotFoundError``.
 
     The two tables of the shared otb-results folder disagree on 7 sequences (Box, Car1, Car2,
     Coke, Crossing, Human4, Jump; e.g. Crossing's flags lack FM and OPR). The text table matches
@@ -619,38 +606,8 @@ def load_attribute_table(source) -> dict[str, set[str]]:
     if isinstance(source, Mapping):
         return {canonical_name(k): {a.strip().upper() for a in v} for k, v in source.items()}
     path = Path(source)
-    if path.is_dir() and (path / "attributes-tb100.txt").is_file():
-        return load_attribute_table(path / "attributes-tb100.txt")
-    if path.is_dir():
-        for cand in (path / "anno" / "att", path / "att"):
-            if cand.is_dir():
-                path = cand
-                break
-        table: dict[str, set[str]] = {}
-        for f in sorted(path.glob("*.txt")):
-            text = f.read_text(encoding="utf-8", errors="replace").strip()
-            parts = [p for p in _SPLIT.split(text) if p]
-            if len(parts) != len(ATTRIBUTE_FLAG_ORDER) or any(p not in ("0", "1") for p in parts):
-                raise ValueError(f"{f}: expected 11 0/1 attribute flags "
-                                 f"({', '.join(ATTRIBUTE_FLAG_ORDER)}), got {text[:60]!r}")
-            table[canonical_name(f.stem)] = {a for a, p in zip(ATTRIBUTE_FLAG_ORDER, parts) if p == "1"}
-        if not table:
-            raise ValueError(f"{source}: no attribute files found")
-        return table
-    if not path.is_file():
+    if not path.exists():
         raise FileNotFoundError(f"{path}: no such attribute file or folder")
-    if path.suffix.lower() == ".json":
-        data = json.loads(path.read_text(encoding="utf-8"))
-        return load_attribute_table(data)
-    table = {}
-    known = set(ATTRIBUTES)
-    for lineno, line in enumerate(path.read_text(encoding="utf-8", errors="replace").splitlines(), 1):
-        if not line.strip() or line.lstrip().startswith("#"):
-            continue
-        parts = line.split(None, 1)
-        attrs = {a.strip().upper() for a in re.split(r"[,\s]+", parts[1]) if a.strip()} if len(parts) > 1 else set()
-        unknown = attrs - known
-        if unknown:
-            raise ValueError(f"{path}:{lineno}: unknown attribute(s) {', '.join(sorted(unknown))}")
-        table[canonical_name(parts[0])] = attrs
-    return table
+    if path.is_file() and path.suffix.lower() == ".json":
+        return load_attribute_table(json.loads(path.read_text(encoding="utf-8")))
+    return {canonical_name(name): set(codes) for name, codes in load_attributes(path).items()}
