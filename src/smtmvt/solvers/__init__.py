@@ -7,8 +7,15 @@ Calling convention of every solver::
 ``X`` and ``D`` are lists of K arrays (one per view) of shapes (d_k, n) and
 (d_k, N); ``C`` is an ndarray (K, N, n) and ``E`` a list of K arrays (d_k, n).
 Outputs are float64.
+
+``SOLVERS`` maps a model name to its solver: ``"smtmvt"`` (this paper, see
+:mod:`smtmvt.solvers.smtmvt`) and the comparison models ``"l1t"``, ``"mtt"``,
+``"mtmvt-ls"``, ``"mtmvt-lad"`` (see :mod:`smtmvt.solvers.baselines`). Their
+parameters differ (``lam``/``gamma``, ``lam``, ``lam_p``/``lam_q``); every one
+also takes ``tol``, ``max_iter`` and ``return_info``.
 """
 
+from .baselines import solve_l1t, solve_mtmvt_lad, solve_mtmvt_ls, solve_mtt
 from .smtmvt import (
     METHODS,
     SolverInfo,
@@ -18,11 +25,24 @@ from .smtmvt import (
     solve_smtmvt,
 )
 
+SOLVERS = {
+    "smtmvt": solve_smtmvt,
+    "l1t": solve_l1t,
+    "mtt": solve_mtt,
+    "mtmvt-ls": solve_mtmvt_ls,
+    "mtmvt-lad": solve_mtmvt_lad,
+}
+
 __all__ = [
     "METHODS",
+    "SOLVERS",
     "SolverInfo",
     "lipschitz_constant",
     "reconstruction_residual",
     "smtmvt_objective",
+    "solve_l1t",
+    "solve_mtmvt_lad",
+    "solve_mtmvt_ls",
+    "solve_mtt",
     "solve_smtmvt",
 ]

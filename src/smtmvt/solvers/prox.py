@@ -19,6 +19,7 @@ __all__ = [
     "nuclear_norms",
     "huber_prox",
     "group_shrink",
+    "group_huber_prox",
 ]
 
 
@@ -124,3 +125,20 @@ def group_shrink(V: np.ndarray, tau: float, axis) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         f = np.where(norms > tau, 1.0 - tau / norms, 0.0)
     return V * f
+
+
+def group_huber_prox(V: np.ndarray, gamma: float, rho: float, axis) -> np.ndarray:
+    """Prox of ``h / rho`` with ``h(r) = min_e ||r - e||_2^2 + gamma ||e||_2`` per group.
+
+    The groups are the slices reduced over ``axis``. ``h`` is the group Huber
+    function (``||r||^2`` for ``||r|| <= gamma/2``, ``gamma ||r|| - gamma^2/4``
+    beyond) and its prox is ``v - P(2 v / (2 + rho))`` with ``P`` the projection
+    onto the L2 ball of radius ``gamma / rho`` (the vector form of
+    :func:`huber_prox`). The minimizing ``e`` is ``group_shrink(r, gamma/2)``.
+    """
+    W = V * (2.0 / (2.0 + rho))
+    norms = np.sqrt(np.sum(W * W, axis=axis, keepdims=True))
+    radius = gamma / rho
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f = np.where(norms > radius, radius / norms, 1.0)
+    return V - W * f

@@ -78,12 +78,12 @@ accuracy, see :func:`smtmvt.solvers.prox.singular_value_threshold`).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ._inputs import check_params, check_views, check_warm_start
-from .prox import huber_prox, nuclear_norms, singular_value_threshold, soft_threshold
+from .prox import nuclear_norms, singular_value_threshold, soft_threshold
 
 __all__ = [
     "SolverInfo",
@@ -121,6 +121,9 @@ class SolverInfo:
         last relative change of (C, E), and NaN.
     rho : float
         Final ADMM penalty (NaN for ``"paper"``).
+    parts : dict or None
+        Model-specific components of the solution (e.g. ``P`` and ``Q`` of
+        the MTMVT models, whose C is ``P + Q``); None for SMTMVT.
     """
 
     method: str
@@ -130,6 +133,7 @@ class SolverInfo:
     primal_residual: float
     dual_residual: float
     rho: float = float("nan")
+    parts: dict | None = field(default=None, compare=False)
 
 
 def _check_codes(C, K: int, N: int, n: int) -> np.ndarray:
