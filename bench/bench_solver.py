@@ -14,6 +14,10 @@ Prints, for lam in {0.1, 1} (gamma 0.25): the median solve time and the
 iterations of the default method at each tolerance, the time and iterations of
 the paper's iteration, and the relative objective gap of each to a
 high-accuracy reference (default method at tol 1e-10). Nothing is asserted.
+
+On a shared or busy machine run with ``OPENBLAS_NUM_THREADS=1``: the
+products are small (d_k x 10 by 10 x 400) and BLAS threads contending with
+other processes made the solve about 4 times slower in our measurements.
 """
 
 from __future__ import annotations
