@@ -132,3 +132,23 @@ def test_prepare_frame_keeps_the_channel_count_it_is_given():
     one = prepare_frame(rgb, channels=1)
     assert one.color.shape == (20, 30, 1)
     np.testing.assert_allclose(one.color[..., 0], 200 / 255 * 0.299, atol=2e-3)
+
+
+@pytest.mark.parametrize("name,views", [("l1t", ("intensity",)), ("mtt", ("intensity",)),
+                                        ("mtmvt-ls", ("intensity", "color", "hog", "lbp"))])
+def test_comparison_models_track_in_the_same_filter(demo, name, views):
+    """The paper's comparison models as observation models of our particle filter."""
+    from smtmvt.evaluation.trackers import make_tracker
+
+    cfg = FAST.replace(model=name, views=views, n_particles=60)
+    boxes = _track(demo.frames[:10], demo.groundtruth[0], cfg)
+    assert overlap_ratio(boxes, demo.groundtruth[:10]).mean() > 0.5
+    ours = _track(demo.frames[:10], demo.groundtruth[0], FAST.replace(n_particles=60))
+    assert not np.array_equal(boxes, ours)  # a different observation model really ran
+    adapter = make_tracker(f"smtmvt-{name}", seed=0)
+    assert adapter.config.model == name and adapter.config.views == views
+
+
+def test_unknown_model_is_rejected():
+    with pytest.raises(ValueError, match="model"):
+        TrackerConfig(model="nope")

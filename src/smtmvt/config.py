@@ -39,8 +39,14 @@ class TrackerConfig:
     feature_size : (int, int)
         Height, width (pixels) to which each candidate is warped for the HOG,
         LBP and color views.
+    model : str
+        Observation model, a key of :data:`smtmvt.solvers.SOLVERS`: ``"smtmvt"``
+        (the paper's, default) or one of the comparison models of the paper's
+        table, ``"l1t"``, ``"mtt"``, ``"mtmvt-ls"``, ``"mtmvt-lad"``, run in the
+        same particle filter with their solvers' default weights (L1T and MTT
+        are single-view: use them with ``views=("intensity",)``).
     solver : str
-        ``"admm"`` (exact ADMM, converges to the optimum; default)
+        Method of the SMTMVT solver: ``"admm"`` (exact ADMM, converges to the optimum; default)
         or ``"paper"`` (the paper's subgradient step).
     solver_tol : float
         Relative change of the iterates at which the solver stops.
@@ -69,6 +75,7 @@ class TrackerConfig:
     views: tuple = ("intensity", "color", "hog", "lbp")
     affine_std: tuple = (0.01, 0.0005, 0.0005, 0.01, 4.0, 4.0)
     feature_size: tuple = (32, 32)
+    model: str = "smtmvt"
     solver: str = "admm"
     solver_tol: float = 1e-3
     solver_max_iter: int = 200
@@ -85,6 +92,7 @@ class TrackerConfig:
             "n_particles": int(self.n_particles) >= 1,
             "n_templates": int(self.n_templates) >= 1,
             "views": len(self.views) >= 1,
+            "model": self.model in ("smtmvt", "l1t", "mtt", "mtmvt-ls", "mtmvt-lad"),
             "affine_std": len(self.affine_std) == 6 and all(s >= 0 for s in self.affine_std),
             "feature_size": len(self.feature_size) == 2 and min(self.feature_size) >= 8,
             "solver_tol": self.solver_tol > 0,

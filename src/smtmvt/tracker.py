@@ -35,7 +35,7 @@ from .geometry import affine_to_box, box_to_affine, clip_box_to_image
 from .likelihood import likelihoods
 from .motion import propagate, resample
 from .preprocess import PreparedFrame, prepare_frame
-from .solvers import reconstruction_residual, solve_smtmvt
+from .solvers import SOLVERS, reconstruction_residual, solve_smtmvt
 from .templates import TemplateSet
 from .warp import inside_fraction, warp_patches
 
@@ -190,8 +190,11 @@ class Tracker:
         X = self._views(prepared, particles)
         D = self._templates.dictionaries
         with self._timed("solve"):
-            C, E = solve_smtmvt(X, D, lam=cfg.lam, gamma=cfg.gamma, method=cfg.solver,
-                                tol=cfg.solver_tol, max_iter=cfg.solver_max_iter)
+            if cfg.model == "smtmvt":
+                C, E = solve_smtmvt(X, D, lam=cfg.lam, gamma=cfg.gamma, method=cfg.solver,
+                                    tol=cfg.solver_tol, max_iter=cfg.solver_max_iter)
+            else:
+                C, E = SOLVERS[cfg.model](X, D, tol=cfg.solver_tol, max_iter=cfg.solver_max_iter)
             residual = reconstruction_residual(X, D, C)
         # A candidate whose centre left the image is not a valid observation.
         valid = inside_fraction(particles, prepared.shape) >= 0.5

@@ -368,6 +368,12 @@ def _smtmvt_factory(seed: int | None = None, **options) -> SmtmvtAdapter:
 
 
 register_tracker("smtmvt", _smtmvt_factory)
+# The paper's comparison models in our particle filter (TrackerConfig.model):
+# L1T and MTT code the intensity view only, MTMVT-LS all four views. MTMVT-LAD
+# is left out of the registry: its exact LAD solver is too slow per frame.
+register_tracker("smtmvt-l1t", functools.partial(_smtmvt_factory, model="l1t", views=("intensity",)))
+register_tracker("smtmvt-mtt", functools.partial(_smtmvt_factory, model="mtt", views=("intensity",)))
+register_tracker("smtmvt-mtmvt-ls", functools.partial(_smtmvt_factory, model="mtmvt-ls"))
 for _name in _OPENCV:
     register_tracker(_name, functools.partial(_opencv_factory, _name))
 del _name
