@@ -15,11 +15,17 @@ coefficients:
    occluded: no template is replaced for this and the next 4 frames (L1-APG
    flags occlusion for 5 frames).
 3. Replacement. Let ``j*`` be the template with the largest coefficient. If the
-   angle between the best candidate and ``j*``, ``arccos`` of the mean over views
-   of their cosine similarity, exceeds ``update_angle`` (30 degrees, the OTB
-   setting of L1-APG), the appearance has changed: the template of least weight,
+   angle between the best candidate and ``j*`` exceeds ``update_angle`` (60
+   degrees by default; L1-APG uses 30 on raw intensities, see
+   :class:`smtmvt.config.TrackerConfig`), the appearance has changed: the template of least weight,
    never template 0 (the exact first-frame target), is replaced by the best
-   candidate and given the median weight (L1T).
+   candidate and given the median weight (L1T). The angle is measured, as in
+   L1-APG, on the intensity view (``arccos`` of the cosine similarity of the
+   normalized vectors); without an intensity view, on the mean cosine over the
+   views. The histogram views (color, HOG, LBP) of neighbouring candidates
+   differ much more than their intensities: measured on the mean over views, the
+   angle exceeded 30 degrees on nearly every frame, and the templates were
+   replaced every frame and drifted.
 """
 
 from __future__ import annotations
@@ -88,7 +94,10 @@ class TemplateSet:
         else:
             occ = float(np.mean(np.concatenate([np.abs(ek) > 0 for ek in e])))
         j_star = int(np.argmax(mean_c))
-        cos = np.mean([float(np.dot(xk, Dk[:, j_star])) for xk, Dk in zip(x, self.dictionaries)])
+        if intensity_view is not None:
+            cos = float(np.dot(x[intensity_view], self.dictionaries[intensity_view][:, j_star]))
+        else:
+            cos = np.mean([float(np.dot(xk, Dk[:, j_star])) for xk, Dk in zip(x, self.dictionaries)])
         angle = float(np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))))
 
         occluded = occ > occlusion_fraction
