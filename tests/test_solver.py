@@ -11,26 +11,12 @@ from smtmvt.solvers import (
     solve_smtmvt,
 )
 
+from solver_instances import make_instance  # noqa: E402
+
 cp = pytest.importorskip("cvxpy")
 
 
 # ---------------------------------------------------------------- helpers
-def make_instance(seed, K=3, N=5, n=4, d_range=(5, 20)):
-    """Small random instance: nonnegative-ish templates with unit columns,
-    candidates = nonnegative mixtures of templates + dense noise + a few outliers."""
-    rng = np.random.default_rng(seed)
-    ds = rng.integers(d_range[0], d_range[1] + 1, K)
-    X, D = [], []
-    for d in ds:
-        Dk = np.abs(rng.standard_normal((d, N))) + 0.3 * rng.standard_normal((d, N))
-        Dk /= np.linalg.norm(Dk, axis=0)
-        Xk = 0.5 * Dk @ np.abs(rng.standard_normal((N, n))) + 0.1 * rng.standard_normal((d, n))
-        Xk += (rng.random((d, n)) < 0.1) * rng.standard_normal((d, n))
-        X.append(Xk)
-        D.append(Dk)
-    return X, D
-
-
 def cvxpy_solve(X, D, lam, gamma):
     """Reference optimum of eq. generalOPT2 with CLARABEL at high accuracy."""
     K, N, n = len(X), D[0].shape[1], X[0].shape[1]

@@ -10,21 +10,9 @@ import pytest
 from smtmvt.solvers import SOLVERS, solve_smtmvt
 from smtmvt.solvers.baselines import solve_l1t, solve_mtmvt_lad, solve_mtmvt_ls, solve_mtt
 
+from solver_instances import make_instance  # noqa: E402
+
 cp = pytest.importorskip("cvxpy")
-
-
-def make_instance(seed, K, N, n):
-    """Random views: unit-column nonnegative-ish templates, noisy mixtures with outliers."""
-    rng = np.random.default_rng(seed)
-    X, D = [], []
-    for d in rng.integers(5, 21, K):
-        Dk = np.abs(rng.standard_normal((d, N))) + 0.3 * rng.standard_normal((d, N))
-        Dk /= np.linalg.norm(Dk, axis=0)
-        Xk = 0.5 * Dk @ np.abs(rng.standard_normal((N, n))) + 0.1 * rng.standard_normal((d, n))
-        Xk += (rng.random((d, n)) < 0.1) * rng.standard_normal((d, n))
-        X.append(Xk)
-        D.append(Dk)
-    return X, D
 
 
 def _solve(prob):
