@@ -7,7 +7,9 @@ Where the paper is silent the default is named with its source.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
+
+from .solvers import SOLVERS
 
 __all__ = ["TrackerConfig"]
 
@@ -103,7 +105,7 @@ class TrackerConfig:
             "n_particles": int(self.n_particles) >= 1,
             "n_templates": int(self.n_templates) >= 1,
             "views": len(self.views) >= 1,
-            "model": self.model in ("smtmvt", "l1t", "mtt", "mtmvt-ls", "mtmvt-lad"),
+            "model": self.model in SOLVERS,
             "affine_std": len(self.affine_std) == 6 and all(s >= 0 for s in self.affine_std),
             "feature_size": len(self.feature_size) == 2 and min(self.feature_size) >= 8,
             "solver_tol": self.solver_tol > 0,

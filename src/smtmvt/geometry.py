@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["REF", "box_to_affine", "affine_to_box", "affine_scale", "clip_box_to_image"]
+__all__ = ["REF", "box_to_affine", "affine_to_box", "affine_scale", "box_inside_fraction"]
 
 #: Size of the template reference frame, in template units.
 REF = 32.0
@@ -89,14 +89,13 @@ def affine_scale(params) -> np.ndarray:
     return np.sqrt((p[:, :4] ** 2).sum(axis=1) / 2.0)
 
 
-def clip_box_to_image(box, shape) -> tuple:
-    """Fraction of a 0-based box inside an image of ``shape`` (H, W[, C]).
+def box_inside_fraction(box, shape) -> float:
+    """Fraction of the area of a 0-based box ``(x, y, w, h)`` inside an image of ``shape`` (H, W[, C]).
 
-    Returns ``(inside_fraction, area)``; used to reject boxes mostly outside.
+    0 for a box of zero or negative size; used to reject boxes mostly outside.
     """
     x, y, w, h = (float(v) for v in box)
     H, W = shape[:2]
     ix = max(0.0, min(x + w, W) - max(x, 0.0))
     iy = max(0.0, min(y + h, H) - max(y, 0.0))
-    area = w * h
-    return (ix * iy / area if area > 0 else 0.0), area
+    return ix * iy / (w * h) if w > 0 and h > 0 else 0.0

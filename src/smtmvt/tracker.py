@@ -31,7 +31,7 @@ from threadpoolctl import ThreadpoolController
 
 from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
-from .geometry import affine_to_box, box_to_affine, clip_box_to_image
+from .geometry import affine_to_box, box_inside_fraction, box_to_affine
 from .likelihood import likelihoods
 from .motion import propagate, resample
 from .preprocess import PreparedFrame, prepare_frame
@@ -39,7 +39,7 @@ from .solvers import SOLVERS, reconstruction_residual, solve_smtmvt
 from .templates import TemplateSet
 from .warp import inside_fraction, warp_patches
 
-__all__ = ["Tracker", "TrackResult"]
+__all__ = ["Tracker", "TrackResult", "track_frames"]
 
 
 @dataclass(frozen=True)
@@ -157,7 +157,7 @@ class Tracker:
             raise ValueError(f"init: box {tuple(b)} has zero or negative size")
         prepared = prepare_frame(frame, "init frame")
         self._channels = prepared.color.shape[2]
-        inside, _ = clip_box_to_image(b, prepared.shape)
+        inside = box_inside_fraction(b, prepared.shape)
         if inside < 0.25:
             raise ValueError(
                 f"init: box {tuple(b)} is mostly outside the {prepared.shape[1]}x{prepared.shape[0]} image "
@@ -196,7 +196,7 @@ class Tracker:
             else:
                 C, E = SOLVERS[cfg.model](X, D, tol=cfg.solver_tol, max_iter=cfg.solver_max_iter)
             residual = reconstruction_residual(X, D, C)
-        # A candidate whose centre left the image is not a valid observation.
+        # A candidate mostly outside the image is not a valid observation.
         valid = inside_fraction(particles, prepared.shape) >= 0.5
         p = likelihoods(residual, cfg.alpha, valid)
 
@@ -231,3 +231,28 @@ class Tracker:
         if not self._initialized:
             raise RuntimeError("tracker not initialized")
         return self._box
+
+
+def track_frames(tracker: Tracker, frames, box):
+    """Run ``tracker`` over ``frames``: ``init`` on the first with ``box``, ``update`` on the rest.
+
+    Parameters
+    ----------
+    tracker : Tracker (or any object with the same ``init`` / ``update``).
+    frames : iterable of frames; read lazily, one at a time.
+    box : (x, y, w, h) 0-based pixels, the target in the first frame.
+
+    Yields
+    ------
+    (frame, box, seconds) per frame: the frame, its 0-based box (``box`` itself
+    for the first frame) and the seconds spent in ``init`` / ``update`` only
+    (reading the frame is not counted).
+    """
+    for i, frame in enumerate(frames):
+        t0 = time.perf_counter()
+        if i == 0:
+            tracker.init(frame, box)
+            out = tuple(float(v) for v in box)
+        else:
+            out = tracker.update(frame).box
+        yield frame, out, time.perf_counter() - t0
