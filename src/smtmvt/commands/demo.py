@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-import time
 from pathlib import Path
 
 import numpy as np
@@ -37,7 +36,7 @@ def run_demo(args) -> int:
     from ..data import write_boxes
     from ..demo import make_demo_sequence
     from ..evaluation.metrics import overlap_ratio
-    from ..tracker import Tracker
+    from ..tracker import Tracker, track_frames
     from ..visualize import VideoSink, draw_box
 
     out = Path(args.out)
@@ -46,17 +45,14 @@ def run_demo(args) -> int:
     tracker = Tracker(TrackerConfig(seed=args.seed))
     boxes = np.empty((len(seq), 4))
     elapsed = 0.0
+    run = track_frames(tracker, seq.frames, seq.groundtruth[0])
     with VideoSink(out / "demo.gif", fps=15) as sink:
-        for i in tqdm(range(len(seq)), unit="frame", desc="demo", disable=args.quiet):
-            t0 = time.perf_counter()
-            if i == 0:
-                tracker.init(seq.frames[0], seq.groundtruth[0])
-                boxes[0] = seq.groundtruth[0]
-            else:
-                boxes[i] = tracker.update(seq.frames[i]).box
-            elapsed += time.perf_counter() - t0
-            img = draw_box(seq.frames[i], seq.groundtruth[i], (0, 255, 0), thickness=1)
-            sink.add(draw_box(img, boxes[i], (255, 0, 0), "smtmvt"))
+        for i, (frame, box, seconds) in enumerate(tqdm(run, total=len(seq), unit="frame", desc="demo",
+                                                        disable=args.quiet)):
+            boxes[i] = box
+            elapsed += seconds
+            img = draw_box(frame, seq.groundtruth[i], (0, 255, 0), thickness=1)
+            sink.add(draw_box(img, box, (255, 0, 0), "smtmvt"))
     overlaps = overlap_ratio(boxes, seq.groundtruth)
     write_boxes(out / "demo_result.txt", boxes)
     write_boxes(out / "demo_groundtruth.txt", seq.groundtruth)

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import time
 
 import numpy as np
 
@@ -52,7 +51,7 @@ def run_track(args) -> int:
     from ..config import TrackerConfig
     from ..data import open_sequence, write_boxes
     from ..evaluation.metrics import overlap_ratio
-    from ..tracker import Tracker
+    from ..tracker import Tracker, track_frames
     from ..visualize import VideoSink, draw_box
 
     seq = open_sequence(args.source, groundtruth=args.groundtruth)
@@ -69,34 +68,29 @@ def run_track(args) -> int:
     tracker = Tracker(TrackerConfig(**overrides))
 
     boxes = np.full((n, 4), np.nan)
+    done = 0
     sink = VideoSink(args.video) if args.video else None
     track_time = 0.0
     bar = tqdm(total=n, unit="frame", disable=args.quiet, desc=seq.name)
     try:
-        for i in range(n):
-            frame = seq[i]
-            t0 = time.perf_counter()
-            if i == 0:
-                tracker.init(frame, box0)
-                boxes[0] = box0
-            else:
-                boxes[i] = tracker.update(frame).box
-            track_time += time.perf_counter() - t0
+        for i, (frame, box, seconds) in enumerate(track_frames(tracker, (seq[i] for i in range(n)), box0)):
+            boxes[i] = box
+            done = i + 1
+            track_time += seconds
             if sink is not None:
                 img = frame
                 if seq.groundtruth is not None and np.all(np.isfinite(seq.groundtruth[i])):
                     img = draw_box(img, seq.groundtruth[i], (0, 255, 0))
-                sink.add(draw_box(img, boxes[i], (255, 0, 0), "smtmvt"))
+                sink.add(draw_box(img, box, (255, 0, 0), "smtmvt"))
             bar.update(1)
-            bar.set_postfix(fps=f"{(i + 1) / max(track_time, 1e-9):.1f}")
+            bar.set_postfix(fps=f"{done / max(track_time, 1e-9):.1f}")
     finally:
         bar.close()
         if sink is not None:
             sink.close()
-        done = np.all(np.isfinite(boxes), axis=1)
-        if done.any():
+        if done:
             # Whatever was tracked is written, also after an interruption.
-            write_boxes(args.out, boxes[: int(np.argmin(done)) if not done.all() else n])
+            write_boxes(args.out, boxes[:done])
     msg = f"{seq.name}: {n} frames, {n / max(track_time, 1e-9):.1f} fps (tracking only) -> {args.out}"
     if seq.groundtruth is not None:
         gt = seq.groundtruth[:n]
