@@ -18,22 +18,19 @@ closed, proper and convex (Boyd et al. 2011, sec. 3.2). One iteration::
     Z_b <- prox_{g_b/(rho beta)}(C_b + U_b)
     U   <- U + (A x + B z - c)
 
-Stopping rule and rho adaptation are those of the SMTMVT solver: relative
-primal and dual residuals below tol; residual balancing during the first 200
-iterations only.
+Stopping rule and rho adaptation are those of the SMTMVT solver
+(:mod:`smtmvt.solvers._admm_rules`), applied here to the whole problem at once
+(these models couple the candidates): relative primal and dual residuals below
+tol; residual balancing during the first 200 iterations only.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["admm_blocks"]
+from ._admm_rules import penalty_factor, tolerances
 
-_ABS_FLOOR = 1e-14
-_ADAPT_UNTIL = 200
-_ADAPT_EVERY = 5
-_ADAPT_MAX = 30
-_ADAPT_RATIO = 5.0
+__all__ = ["admm_blocks"]
 
 
 def admm_blocks(X, D, loss_prox, block_proxes, tol, max_iter, rho=2.0, beta=0.5):
@@ -102,20 +99,17 @@ def admm_blocks(X, D, loss_prox, block_proxes, tol, max_iter, rho=2.0, beta=0.5)
         bz = np.sqrt(beta * sum(float(np.vdot(z, z)) for z in Z_new))
         DtUR, DtR, Z = DtUn, DtR_new, Z_new
         scale_dual = rho * max([np.linalg.norm(DtUR)] + [beta * np.linalg.norm(u) for u in U])
-        eps_pri = tol * max(ax, bz, x_norm) + _ABS_FLOOR
-        eps_dual = tol * scale_dual + _ABS_FLOOR
+        eps_pri, eps_dual = tolerances(tol, max(ax, bz, x_norm), scale_dual)
         if r_pri <= eps_pri and r_dual <= eps_dual:
             converged = True
             break
-        if it <= _ADAPT_UNTIL and it % _ADAPT_EVERY == 0 and n_adapt < _ADAPT_MAX:
-            ratio = (r_pri / eps_pri) / max(r_dual / eps_dual, 1e-300)
-            factor = 2.0 if ratio > _ADAPT_RATIO else (0.5 if ratio < 1.0 / _ADAPT_RATIO else 1.0)
-            if factor != 1.0:
-                rho *= factor
-                U = [u / factor for u in U]
-                UR = [u / factor for u in UR]
-                DtUR = DtUR / factor
-                n_adapt += 1
+        factor = penalty_factor(it, n_adapt, r_pri, eps_pri, r_dual, eps_dual)
+        if factor != 1.0:
+            rho *= factor
+            U = [u / factor for u in U]
+            UR = [u / factor for u in UR]
+            DtUR = DtUR / factor
+            n_adapt += 1
     info = dict(iterations=it, converged=converged, primal_residual=float(r_pri),
                 dual_residual=float(r_dual), rho=float(rho))
     return Z, info

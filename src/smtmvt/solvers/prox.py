@@ -43,8 +43,10 @@ def nonneg_shrink(V: np.ndarray, tau: float) -> np.ndarray:
     return np.maximum(V - tau, 0.0)
 
 
-def _gram_factors(P: np.ndarray, tau: float):
+def _gram_factors(P: np.ndarray, tau):
     """Eigen-decomposition of the small Gram matrix of each slice of ``P``.
+
+    ``tau`` is a float or an array of one threshold per slice (``P.shape[:-2]``).
 
     Returns ``(V, s, f, left)``: eigenvectors ``V`` of the Gram matrix,
     singular values ``s`` of the slices, shrink factors ``f = max(1 - tau/s, 0)``
@@ -55,12 +57,13 @@ def _gram_factors(P: np.ndarray, tau: float):
     M = P @ Pt if left else Pt @ P
     w, V = np.linalg.eigh(M)
     s = np.sqrt(np.maximum(w, 0.0))
+    tau = np.asarray(tau, dtype=np.float64)[..., None]  # one threshold per slice
     with np.errstate(divide="ignore", invalid="ignore"):
         f = np.where(s > tau, 1.0 - tau / s, 0.0)
     return V, s, f, left
 
 
-def singular_value_threshold(P: np.ndarray, tau: float) -> np.ndarray:
+def singular_value_threshold(P: np.ndarray, tau) -> np.ndarray:
     """Singular value thresholding of every slice of a stack.
 
     ``SVT_tau(P_i) = U_i diag(max(s_i - tau, 0)) V_i^T`` for each
@@ -80,7 +83,7 @@ def singular_value_threshold(P: np.ndarray, tau: float) -> np.ndarray:
     ----------
     P : ndarray, shape (n, a, b), float64
         Stack of n matrices.
-    tau : float >= 0
+    tau : float >= 0, or (n,) array of one threshold per slice
         Threshold.
 
     Returns

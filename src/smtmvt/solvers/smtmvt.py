@@ -88,6 +88,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._inputs import check_params, check_views, check_warm_start
+from ._admm_rules import ABS_FLOOR, penalty_factor, tolerances
 from .prox import nuclear_norms, singular_value_threshold, soft_threshold
 
 __all__ = [
@@ -101,11 +102,7 @@ __all__ = [
 
 METHODS = ("admm", "paper")
 
-_ABS_FLOOR = 1e-14
-_ADAPT_UNTIL = 200  # iterations during which rho may change
-_ADAPT_EVERY = 5
-_ADAPT_MAX = 30
-_ADAPT_RATIO = 5.0
+_ABS_FLOOR = ABS_FLOOR
 
 
 @dataclass(frozen=True)
@@ -116,19 +113,21 @@ class SolverInfo:
     ----------
     method : str
     iterations : int
-        Iterations performed.
+        Iterations performed (SMTMVT's ADMM: by the slowest candidate).
     converged : bool
-        Whether the stopping rule was met before ``max_iter``.
+        Whether the stopping rule was met before ``max_iter`` (by every candidate).
     objective : float
         ``smtmvt_objective`` of the returned (C, E).
     primal_residual, dual_residual : float
         ADMM: the last ``r_pri`` and ``r_dual`` (absolute). ``"paper"``: the
         last relative change of (C, E), and NaN.
     rho : float
-        Final ADMM penalty (NaN for ``"paper"``).
+        Final ADMM penalty (SMTMVT's ADMM: the median over candidates; NaN for ``"paper"``).
     parts : dict or None
         Model-specific components of the solution (e.g. ``P`` and ``Q`` of
         the MTMVT models, whose C is ``P + Q``); None for SMTMVT.
+    mean_iterations : float
+        SMTMVT's ADMM: iterations per candidate, averaged (NaN otherwise).
     """
 
     method: str
@@ -139,6 +138,7 @@ class SolverInfo:
     dual_residual: float
     rho: float = float("nan")
     parts: dict | None = field(default=None, compare=False)
+    mean_iterations: float = float("nan")
 
 
 def _check_codes(C, K: int, N: int, n: int) -> np.ndarray:
@@ -253,7 +253,8 @@ def solve_smtmvt(
     C0, E0 = check_warm_start(C0, E0, K, N, n, X)
     lam, gamma, max_iter = float(lam), float(gamma), int(max_iter)
     if method == "admm":
-        C, E, info = _solve_admm(X, D, lam, gamma, tol, max_iter, C0, E0)
+        C, info = _solve_admm(X, D, lam, gamma, tol, max_iter, C0, E0)
+        E = [soft_threshold(X[k] - D[k] @ C[k], gamma / 2.0) for k in range(K)]
     elif method == "paper":
         C, E, info = _solve_paper(X, D, lam, gamma, tol, max_iter, C0, E0)
     else:
@@ -266,12 +267,23 @@ def solve_smtmvt(
 
 
 def _solve_admm(X, D, lam, gamma, tol, max_iter, C0, E0, rho=2.0, beta=0.5):
-    """ADMM on the E-eliminated problem; see the module docstring."""
+    """ADMM on the E-eliminated problem, one independent ADMM per candidate.
+
+    The problem separates over candidates, so each candidate runs its own
+    ADMM: its own rho (balanced on its own residuals), its own stopping test,
+    and its result is recorded at the iteration where it first meets that
+    test. A candidate's result therefore does not depend on which other
+    candidates are solved with it (up to the last bits of BLAS products),
+    which makes solving a subset of them exact (see
+    :func:`smtmvt.likelihood.bounded_likelihoods`). Finished candidates are
+    dropped from the working arrays once they are a fifth of them.
+    """
     K, N, n = len(X), D[0].shape[1], X[0].shape[1]
     G = np.stack([Dk.T @ Dk for Dk in D])  # (K, N, N)
-    DX = np.stack([D[k].T @ X[k] for k in range(K)])  # (K, N, n)
     Minv = np.linalg.inv(G + 2.0 * beta * np.eye(N))  # SPD, eigenvalues >= 2 beta
-    x_norm = np.sqrt(sum(float(np.vdot(x, x)) for x in X))
+    x_norm = np.sqrt(sum(np.einsum("ij,ij->j", x, x) for x in X))  # (n,)
+    DX = np.stack([D[k].T @ X[k] for k in range(K)])  # (K, N, n)
+    rho = np.full(n, float(rho))
 
     if C0 is None:
         Z1 = np.zeros((K, N, n))
@@ -300,13 +312,17 @@ def _solve_admm(X, D, lam, gamma, tol, max_iter, C0, E0, rho=2.0, beta=0.5):
         t2 = gamma / (rho * beta)
         U2 = np.where(C0 > 0, t2, np.minimum(-DtUR / beta - U1, t2))
         DtR = DX - G @ C0
+    X = list(X)
 
-    buf = [np.empty_like(x) for x in X]
-    spare = [np.empty_like(x) for x in X]
-    DtUn = np.empty((K, N, n))
-    r_pri = r_dual = np.inf
-    converged = False
-    n_adapt = 0
+    C_out = np.zeros((K, N, n))
+    iterations = np.zeros(n, dtype=int)
+    converged = np.zeros(n, dtype=bool)
+    r_pri_out = np.full(n, np.inf)
+    r_dual_out = np.full(n, np.inf)
+    rho_out = rho.copy()
+    live = np.arange(n)  # candidates (global index) in the working arrays
+    open_ = np.ones(n, dtype=bool)  # working candidates not finished yet
+    n_adapt = np.zeros(n, dtype=int)
     it = 0
     for it in range(1, max_iter + 1):
         # C step: (D'D + 2 beta I) C = D'(X - R + U_R) + beta (Z1 - U1 + Z2 - U2)
@@ -316,57 +332,77 @@ def _solve_admm(X, D, lam, gamma, tol, max_iter, C0, E0, rho=2.0, beta=0.5):
         # V = X - DC + U_R, U_R_new = clip(2V/(2+rho)), R_new = V - U_R_new
         # (R itself is only needed through D'R, updated below).
         c, th = 2.0 / (2.0 + rho), gamma / rho
-        dr_sq = 0.0
+        dr_sq = np.zeros(len(live))
+        DtUn = np.empty_like(C)
         for k in range(K):
-            v = buf[k]
-            np.matmul(D[k], C[k], out=v)
+            v = D[k] @ C[k]
             np.subtract(X[k], v, out=v)
             v += UR[k]
-            u_new = np.multiply(v, c, out=spare[k])
-            np.clip(u_new, -th, th, out=u_new)
-            du = np.subtract(u_new, UR[k], out=UR[k])
-            dr_sq += float(np.vdot(du, du))
-            spare[k], UR[k] = du, u_new
+            v *= c
+            u_new = np.clip(v, -th, th, out=v)
+            du = u_new - UR[k]
+            dr_sq += np.einsum("ij,ij->j", du, du)
+            UR[k] = u_new
             np.matmul(D[k].T, u_new, out=DtUn[k])
         DtR_new = DX - GC + DtUR - DtUn
         # Z steps
-        Z1_new = singular_value_threshold((C + U1).transpose(2, 1, 0), lam / (rho * beta)).transpose(2, 1, 0)
-        Z2_new = np.maximum(C + U2 - gamma / (rho * beta), 0.0)
+        tz = 1.0 / (rho * beta)
+        Z1_new = singular_value_threshold((C + U1).transpose(2, 1, 0), lam * tz).transpose(2, 1, 0)
+        Z2_new = np.maximum(C + U2 - gamma * tz, 0.0)
         D1 = C - Z1_new
         D2 = C - Z2_new
         U1 += D1
         U2 += D2
-        # residuals
-        r_pri = np.sqrt(dr_sq + beta * (np.vdot(D1, D1) + np.vdot(D2, D2)))
-        r_dual = rho * np.linalg.norm((DtR_new - DtR) + beta * ((Z1_new - Z1) + (Z2_new - Z2)))
-        ax = np.sqrt(max(float(np.vdot(C, GC)), 0.0) + 2.0 * beta * float(np.vdot(C, C)))
-        bz = np.sqrt(beta * (np.vdot(Z1_new, Z1_new) + np.vdot(Z2_new, Z2_new)))
-        scale_pri = max(ax, bz, x_norm)
-        DtUR, DtR, Z1, Z2 = DtUn.copy(), DtR_new, Z1_new, Z2_new
-        scale_dual = rho * max(np.linalg.norm(DtUR), beta * np.linalg.norm(U1), beta * np.linalg.norm(U2))
-        eps_pri = tol * scale_pri + _ABS_FLOOR
-        eps_dual = tol * scale_dual + _ABS_FLOOR
-        if r_pri <= eps_pri and r_dual <= eps_dual:
-            converged = True
-            break
+        # per-candidate residuals and scales (sums over views and templates)
+        r_pri = np.sqrt(dr_sq + beta * (_col_sq(D1) + _col_sq(D2)))
+        r_dual = rho * np.sqrt(_col_sq((DtR_new - DtR) + beta * ((Z1_new - Z1) + (Z2_new - Z2))))
+        ax = np.sqrt(np.maximum(np.einsum("kij,kij->j", C, GC), 0.0) + 2.0 * beta * _col_sq(C))
+        bz = np.sqrt(beta * (_col_sq(Z1_new) + _col_sq(Z2_new)))
+        DtUR, DtR, Z1, Z2 = DtUn, DtR_new, Z1_new, Z2_new
+        scale_dual = rho * np.sqrt(np.maximum(_col_sq(DtUR), beta**2 * np.maximum(_col_sq(U1), _col_sq(U2))))
+        eps_pri, eps_dual = tolerances(tol, np.maximum(np.maximum(ax, bz), x_norm[live]), scale_dual)
+        done = open_ & (r_pri <= eps_pri) & (r_dual <= eps_dual)
+        if it == max_iter:
+            done = open_.copy()
+        if done.any():
+            g = live[done]
+            C_out[:, :, g] = Z2[:, :, done]
+            iterations[g] = it
+            converged[g] = (r_pri[done] <= eps_pri[done]) & (r_dual[done] <= eps_dual[done])
+            r_pri_out[g], r_dual_out[g], rho_out[g] = r_pri[done], r_dual[done], rho[done]
+            open_ &= ~done
+            if not open_.any():
+                break
+            if (~open_).sum() * 5 >= len(live):  # drop the finished candidates
+                keep = open_
+                live, open_, rho, n_adapt = live[keep], open_[keep], rho[keep], n_adapt[keep]
+                X = [x[:, keep] for x in X]
+                UR = [u[:, keep] for u in UR]
+                DX, DtR, DtUR = DX[:, :, keep], DtR[:, :, keep], DtUR[:, :, keep]
+                Z1, Z2, U1, U2 = Z1[:, :, keep], Z2[:, :, keep], U1[:, :, keep], U2[:, :, keep]
+                r_pri, eps_pri, r_dual, eps_dual = r_pri[keep], eps_pri[keep], r_dual[keep], eps_dual[keep]
         # residual balancing on normalized residuals, early iterations only
-        if it <= _ADAPT_UNTIL and it % _ADAPT_EVERY == 0 and n_adapt < _ADAPT_MAX:
-            ratio = (r_pri / eps_pri) / max(r_dual / eps_dual, 1e-300)
-            factor = 2.0 if ratio > _ADAPT_RATIO else (0.5 if ratio < 1.0 / _ADAPT_RATIO else 1.0)
-            if factor != 1.0:
-                rho *= factor
-                U1 /= factor
-                U2 /= factor
-                for u in UR:
-                    u /= factor
-                DtUR /= factor
-                n_adapt += 1
+        factor = penalty_factor(it, n_adapt, r_pri, eps_pri, r_dual, eps_dual)
+        if np.any(factor != 1.0):
+            rho *= factor
+            U1 /= factor
+            U2 /= factor
+            for u in UR:
+                u /= factor
+            DtUR /= factor
+            n_adapt += factor != 1.0
 
-    C = Z2
-    E = [soft_threshold(X[k] - D[k] @ C[k], gamma / 2.0) for k in range(K)]
-    info = dict(iterations=it, converged=converged, primal_residual=float(r_pri),
-                dual_residual=float(r_dual), rho=float(rho))
-    return C, E, info
+    info = dict(iterations=int(iterations.max(initial=0)), converged=bool(converged.all()),
+                primal_residual=float(np.sqrt(np.sum(r_pri_out**2))),
+                dual_residual=float(np.sqrt(np.sum(r_dual_out**2))),
+                rho=float(np.median(rho_out)) if n else float("nan"),
+                mean_iterations=float(iterations.mean()) if n else 0.0)
+    return C_out, info
+
+
+def _col_sq(A: np.ndarray) -> np.ndarray:
+    """Per-candidate sum of squares of a (K, N, m) array, ``(m,)``."""
+    return np.einsum("kij,kij->j", A, A)
 
 
 def _nuclear_subgradient(C: np.ndarray, rtol: float = 1e-12) -> np.ndarray:
