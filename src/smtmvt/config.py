@@ -70,6 +70,28 @@ class TrackerConfig:
     occlusion_fraction : float
         Fraction of the intensity template flagged by E above which the frame
         is treated as occluded and no template is replaced (L1-APG: 0.25).
+    prune_eps : float
+        Candidates whose likelihood bound is below ``prune_eps`` times the best
+        candidate's likelihood are not coded (bounded coding,
+        :func:`smtmvt.likelihood.observe`): the chosen box is the same as when
+        coding all of them; resampling weights change by a relative
+        ``n_particles * prune_eps`` at most. 0 codes every candidate.
+    frame_size : (int, int) or None
+        Track on frames resized to ``(width, height)`` pixels (the paper resized
+        every frame to 320x240); boxes are mapped back to the input frame.
+        None: track at the input size.
+    antialias : float
+        Smooth each plane before sampling it on the patch grids, by a Gaussian
+        of ``antialias`` times the sampling step (target size over patch size,
+        :meth:`smtmvt.Tracker._views`); 0 samples the planes as they are.
+    texture_source : str
+        Plane the HOG and LBP views are computed on: ``"tan_triggs"`` (the
+        paper: every view after the illumination normalization) or ``"gray"``.
+    color_grid : int
+        Cells per side of the color view (:func:`smtmvt.features.color.color_view`);
+        1 is one histogram of the whole box.
+    lbp_radius : float
+        Radius of the LBP view's neighbours, feature-patch pixels.
     blas_threads : int or None
         Threads the BLAS library may use inside :meth:`Tracker.init` and
         :meth:`Tracker.update` (None: leave it alone). The per-frame matrices
@@ -94,6 +116,12 @@ class TrackerConfig:
     solver_max_iter: int = 200
     update_angle: float = 60.0
     occlusion_fraction: float = 0.25
+    prune_eps: float = 1e-6
+    frame_size: tuple | None = None
+    antialias: float = 0.0
+    texture_source: str = "tan_triggs"
+    color_grid: int = 1
+    lbp_radius: float = 1.0
     blas_threads: int | None = 1
     seed: int | None = 0
 
@@ -110,6 +138,12 @@ class TrackerConfig:
             "feature_size": len(self.feature_size) == 2 and min(self.feature_size) >= 8,
             "solver_tol": self.solver_tol > 0,
             "solver_max_iter": int(self.solver_max_iter) >= 1,
+            "prune_eps": 0 <= self.prune_eps < 1,
+            "frame_size": self.frame_size is None or (len(self.frame_size) == 2 and min(self.frame_size) >= 16),
+            "antialias": self.antialias >= 0,
+            "texture_source": self.texture_source in ("tan_triggs", "gray"),
+            "color_grid": int(self.color_grid) >= 1,
+            "lbp_radius": self.lbp_radius > 0,
         }
         for name, ok in checks.items():
             if not ok:
@@ -117,6 +151,8 @@ class TrackerConfig:
         object.__setattr__(self, "views", tuple(self.views))
         object.__setattr__(self, "affine_std", tuple(float(s) for s in self.affine_std))
         object.__setattr__(self, "feature_size", tuple(int(s) for s in self.feature_size))
+        if self.frame_size is not None:
+            object.__setattr__(self, "frame_size", tuple(int(s) for s in self.frame_size))
 
     @classmethod
     def paper(cls, **changes) -> "TrackerConfig":
@@ -127,7 +163,8 @@ class TrackerConfig:
         where the paper is silent (measured in the first tracker issue): the
         random walk ``affine_std`` (MTT's with translation 8), the template
         update angle 60 degrees on the intensity view and occlusion fraction
-        0.25 (L1T/L1-APG style rule). Every field is spelled out, so the
+        0.25 (L1T/L1-APG style rule). Frames are resized to 320x240 as in the
+        paper's experiments. Every field is spelled out, so the
         defaults of :class:`TrackerConfig` may move on without changing it.
         ``changes`` override fields (e.g. ``seed``).
         """
@@ -136,7 +173,8 @@ class TrackerConfig:
             views=("intensity", "color", "hog", "lbp"),
             affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0), feature_size=(32, 32),
             model="smtmvt", solver="admm", solver_tol=1e-3, solver_max_iter=200,
-            update_angle=60.0, occlusion_fraction=0.25,
+            update_angle=60.0, occlusion_fraction=0.25, frame_size=(320, 240), antialias=0.0,
+            texture_source="tan_triggs", color_grid=1, lbp_radius=1.0,
         )
         base.update(changes)
         return cls(**base)

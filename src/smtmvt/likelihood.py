@@ -1,14 +1,46 @@
-"""Observation likelihood of the candidates.
+"""Observation likelihood of the candidates, and coding only the candidates that matter.
 
 The paper: ``p_i = exp(-alpha * sum_k ||D^k c_i^k - x_i^k||^2)`` (the outlier term
 E is left out of the residual, as L1-APG leaves out its trivial templates).
+
+Bounded coding (:func:`observe`)
+--------------------------------
+Coding all n candidates with the exact solver is the most expensive stage of
+a frame, yet most candidates end with likelihoods many orders of magnitude
+below the best one and cannot change anything. Following L1-APG's bounded
+particle resampling (Mei et al., CVPR 2011), each candidate's likelihood is
+bounded from above by ``exp(-alpha b_i)``, ``b_i`` its least-squares residual
+(:func:`smtmvt.solvers.bounds.least_squares_residuals`, a lower bound on its
+residual under any model). The rule, with ``delta = ln(1 / eps) / alpha``:
+
+1. code the valid candidates with ``b_i <= min_j b_j + delta`` (none of the
+   others can be within a factor ``eps`` of the best, whose residual is at
+   least ``min_j b_j``);
+2. with ``r*`` the best residual found, also code those with ``b_i <= r* + delta``
+   not coded yet.
+
+Every candidate left out then has ``p_i <= eps * p*``. So the chosen (best)
+candidate is the one that coding all of them would choose, and its code is
+the same: the SMTMVT solver runs one independent ADMM per candidate, whose
+result does not depend on the other candidates in the batch. The skipped
+candidates get likelihood 0: with ``eps < 1 / n`` each of them would have been
+resampled ``floor(n p_i / sum p) = 0`` times anyway, and the sum of the
+weights changes by a relative ``n * eps`` at most (4e-4 at the defaults), so
+resampling is the same except where that changes the rounding of a count.
 """
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+from typing import Callable
+
 import numpy as np
 
-__all__ = ["likelihoods"]
+from .solvers.bounds import least_squares_residuals
+from .solvers.smtmvt import reconstruction_residual
+
+__all__ = ["likelihoods", "Observation", "observe"]
 
 
 def likelihoods(residual, alpha: float, valid=None) -> np.ndarray:
@@ -25,3 +57,77 @@ def likelihoods(residual, alpha: float, valid=None) -> np.ndarray:
     p = np.zeros_like(r)
     p[ok] = np.exp(-alpha * r[ok])
     return p
+
+
+@dataclass(frozen=True)
+class Observation:
+    """The candidates of one frame, coded over the templates.
+
+    Attributes
+    ----------
+    likelihood : (n,) float64, ``exp(-alpha * residual)``; 0 for invalid and
+        for skipped candidates.
+    residual : (n,) float64 reconstruction residual; NaN where not coded.
+    bound : (n,) float64 least-squares lower bound of the residual.
+    coded : (n,) bool, the candidates that were coded.
+    C : (K, N, n) float64 codes (zero where not coded).
+    E : list of K (d_k, n) float64 outliers (zero where not coded).
+    """
+
+    likelihood: np.ndarray
+    residual: np.ndarray
+    bound: np.ndarray
+    coded: np.ndarray
+    C: np.ndarray
+    E: list
+
+
+def observe(X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-6,
+            always=None) -> Observation:
+    """Code the candidates that can matter and compute their likelihoods.
+
+    Parameters
+    ----------
+    X : list of K (d_k, n) candidate views; D : list of K (d_k, N) dictionaries.
+    code : ``code(X_sub, D) -> (C_sub, E_sub)``, the observation model's
+        solver on a subset of the candidates (columns).
+    alpha : likelihood sharpness.
+    valid : (n,) bool, candidates that may be chosen (others get likelihood 0
+        and are not coded); all when None.
+    eps : relative likelihood below which a candidate is not coded (see the
+        module docstring); 0 codes every valid candidate.
+    always : (n,) bool, candidates coded whatever their bound, e.g. probes
+        scored for diagnosis; their likelihood is reported (valid or not) but
+        they take no part in the rule (pass them with ``valid`` False so that
+        they cannot change which other candidates are coded).
+    """
+    n = X[0].shape[1]
+    K, N = len(D), D[0].shape[1]
+    valid = np.ones(n, dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
+    always = np.zeros(n, dtype=bool) if always is None else np.asarray(always, dtype=bool)
+    bound = least_squares_residuals(X, D)
+    coded = np.zeros(n, dtype=bool)
+    C = np.zeros((K, N, n))
+    E = [np.zeros((Xk.shape[0], n)) for Xk in X]
+    residual = np.full(n, np.nan)
+
+    def run(mask):
+        idx = np.flatnonzero(mask)
+        if idx.size == 0:
+            return
+        Cs, Es = code([Xk[:, idx] for Xk in X], D)
+        C[:, :, idx] = Cs
+        for k in range(K):
+            E[k][:, idx] = Es[k]
+        residual[idx] = reconstruction_residual([Xk[:, idx] for Xk in X], D, Cs)
+        coded[idx] = True
+
+    if eps <= 0 or not valid.any():
+        run(valid | always)
+    else:
+        delta = math.log(1.0 / eps) / alpha
+        run((valid & (bound <= bound[valid].min() + delta)) | always)
+        best = np.nanmin(np.where(valid & coded, residual, np.nan))
+        run(valid & ~coded & (bound <= best + delta))
+    p = likelihoods(residual, alpha, valid | always)
+    return Observation(likelihood=p, residual=residual, bound=bound, coded=coded, C=C, E=E)

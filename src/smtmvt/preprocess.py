@@ -16,7 +16,7 @@ import numpy as np
 
 from .features import tan_triggs
 
-__all__ = ["PreparedFrame", "prepare_frame", "to_unit_range"]
+__all__ = ["PreparedFrame", "prepare_frame", "resize_frame", "smooth", "to_unit_range"]
 
 
 @dataclass(frozen=True)
@@ -27,10 +27,12 @@ class PreparedFrame:
     ----------
     normalized : (H, W) float32 Tan-Triggs output (values in [-10, 10]).
     color : (H, W, C) float32 in [0, 1]; C = 3 (RGB) or 1 (grayscale frame).
+    gray : (H, W) float32 gray frame in [0, 1] (before Tan-Triggs).
     """
 
     normalized: np.ndarray
     color: np.ndarray
+    gray: np.ndarray
 
     @property
     def shape(self) -> tuple:
@@ -91,4 +93,29 @@ def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None 
         color = gray[:, :, None]
     else:
         color = f if f.ndim == 3 else np.repeat(f[:, :, None], 3, axis=2)
-    return PreparedFrame(normalized=tan_triggs(gray), color=np.ascontiguousarray(color))
+    return PreparedFrame(normalized=tan_triggs(gray), color=np.ascontiguousarray(color),
+                         gray=np.ascontiguousarray(gray))
+
+
+def resize_frame(frame: np.ndarray, size) -> np.ndarray:
+    """``frame`` resized to ``size = (width, height)`` pixels (area averaging when shrinking).
+
+    Pixel edges map to pixel edges: a 0-based box ``(x, y, w, h)`` becomes
+    ``(x sx, y sy, w sx, h sy)`` with ``sx = width / W``, ``sy = height / H``.
+    """
+    a = np.asarray(frame)
+    W, H = int(size[0]), int(size[1])
+    if (a.shape[1], a.shape[0]) == (W, H):
+        return a
+    shrink = W * H < a.shape[0] * a.shape[1]
+    return cv2.resize(a, (W, H), interpolation=cv2.INTER_AREA if shrink else cv2.INTER_LINEAR)
+
+
+def smooth(plane: np.ndarray, sigma: float) -> np.ndarray:
+    """Gaussian smoothing of an (H, W) or (H, W, C) float32 plane (``sigma`` pixels).
+
+    Below 0.3 pixels the plane is returned as it is (the kernel would be a delta).
+    """
+    if sigma < 0.3:
+        return plane
+    return cv2.GaussianBlur(plane, (0, 0), float(sigma), borderType=cv2.BORDER_REFLECT)

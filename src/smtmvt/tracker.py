@@ -32,14 +32,14 @@ from threadpoolctl import ThreadpoolController
 from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
 from .geometry import affine_to_box, box_inside_fraction, box_to_affine
-from .likelihood import likelihoods
+from .likelihood import Observation, observe
 from .motion import propagate, resample
-from .preprocess import PreparedFrame, prepare_frame
-from .solvers import SOLVERS, reconstruction_residual, solve_smtmvt
+from .preprocess import PreparedFrame, prepare_frame, resize_frame, smooth, to_unit_range
+from .solvers import SOLVERS, solve_smtmvt
 from .templates import TemplateSet
-from .warp import inside_fraction, warp_patches
+from .warp import inside_fraction, remap_patches, sampling_grid, warp_patches
 
-__all__ = ["Tracker", "TrackResult", "track_frames"]
+__all__ = ["Tracker", "TrackResult", "FrameDetail", "track_frames"]
 
 
 @dataclass(frozen=True)
@@ -63,6 +63,38 @@ class TrackResult:
     occluded: bool
     template_replaced: int | None
     frame_index: int
+
+
+@dataclass(frozen=True)
+class FrameDetail:
+    """What :meth:`Tracker.update_detailed` computed for one frame.
+
+    Attributes
+    ----------
+    particles : (n, 6) float64 affine states of the frame's candidates, in
+        the tracker's working frame (``config.frame_size``).
+    observation : :class:`smtmvt.likelihood.Observation` of the n particles
+        followed by the m probes (likelihoods, residuals, bounds, codes).
+    best : index of the chosen particle, or None when no candidate was valid.
+    probe_boxes : (m, 4) float64 probe boxes, 0-based pixels of the input frame.
+    scale : (2,) float64 working-frame pixels per input pixel (x, y).
+    """
+
+    particles: np.ndarray
+    observation: Observation
+    best: int | None
+    probe_boxes: np.ndarray
+    scale: np.ndarray
+
+    @property
+    def boxes(self) -> np.ndarray:
+        """(n, 4) boxes of the particles, 0-based pixels of the input frame."""
+        return affine_to_box(self.particles).reshape(-1, 4) / np.tile(self.scale, 2)
+
+    @property
+    def probe_likelihood(self) -> np.ndarray:
+        """(m,) likelihoods of the probes (comparable with ``observation.likelihood[:n]``)."""
+        return self.observation.likelihood[len(self.particles):]
 
 
 class Tracker:
@@ -102,16 +134,29 @@ class Tracker:
             self.timings[stage] += time.perf_counter() - t0
 
     def _views(self, frame: PreparedFrame, params: np.ndarray) -> list:
-        """Candidate views ``[(d_k, m) float32]`` of the states ``params (m, 6)``."""
-        fs = self.config.feature_size
+        """Candidate views ``[(d_k, m) float32]`` of the states ``params (m, 6)``.
+
+        With ``config.antialias`` > 0 each plane is first smoothed by a Gaussian
+        of ``antialias`` times the sampling step of the current target (its
+        size over the patch size, pixels per patch pixel), so that sampling it
+        on the patch grid does not alias.
+        """
+        cfg = self.config
+        fs = cfg.feature_size
+        texture = frame.normalized if cfg.texture_source == "tan_triggs" else frame.gray
+        w, h = self._work_box[2], self._work_box[3]
+        step_i = max(w / self._intensity_size[1], h / self._intensity_size[0])
+        step_f = max(w / fs[1], h / fs[0])
         with self._timed("warp"):
+            X, Y = sampling_grid(params, fs)
             patches = Patches(
-                intensity=warp_patches(frame.normalized, params, self._intensity_size),
-                gray=warp_patches(frame.normalized, params, fs),
-                color=warp_patches(frame.color, params, fs).reshape(len(params), fs[0], fs[1], -1),
+                intensity=warp_patches(smooth(frame.normalized, cfg.antialias * step_i), params, self._intensity_size),
+                gray=remap_patches(smooth(texture, cfg.antialias * step_f), X, Y),
+                color=remap_patches(smooth(frame.color, cfg.antialias * step_f), X, Y).reshape(
+                    len(params), fs[0], fs[1], -1),
             )
         with self._timed("features"):
-            return extract_views(patches, self.config.views)
+            return extract_views(patches, cfg.views, self._view_options)
 
     def _template_states(self, state: np.ndarray) -> np.ndarray:
         """The N template states: the exact first box, then N-1 jittered copies.
@@ -147,7 +192,7 @@ class Tracker:
     def update(self, frame: np.ndarray) -> TrackResult:
         """Track the target into ``frame``; returns a :class:`TrackResult`."""
         with self._blas_limit():
-            return self._update(frame)
+            return self._update(frame)[0]
 
     def _init(self, frame: np.ndarray, box) -> None:
         b = np.asarray(box, dtype=np.float64).reshape(-1)
@@ -155,19 +200,27 @@ class Tracker:
             raise ValueError(f"init: box must be 4 finite numbers (x, y, w, h), got {box!r}")
         if b[2] <= 0 or b[3] <= 0:
             raise ValueError(f"init: box {tuple(b)} has zero or negative size")
-        prepared = prepare_frame(frame, "init frame")
+        cfg = self.config
+        shape = np.shape(frame)
+        if cfg.frame_size is None or len(shape) < 2:
+            self._scale = np.ones(2)
+        else:
+            self._scale = np.array([cfg.frame_size[0] / shape[1], cfg.frame_size[1] / shape[0]])
+        prepared = self._prepare(frame, "init frame", None)
         self._channels = prepared.color.shape[2]
-        inside = box_inside_fraction(b, prepared.shape)
+        wb = self._to_work(b)
+        inside = box_inside_fraction(wb, prepared.shape)
         if inside < 0.25:
             raise ValueError(
-                f"init: box {tuple(b)} is mostly outside the {prepared.shape[1]}x{prepared.shape[0]} image "
+                f"init: box {tuple(b)} is mostly outside the {shape[1]}x{shape[0]} image "
                 f"({inside:.0%} inside)"
             )
-        cfg = self.config
         self.timings = defaultdict(float)
-        self._intensity_size = intensity_template_size(b[2], b[3])
+        self._intensity_size = intensity_template_size(wb[2], wb[3])  # in the working frame, as the paper
+        self._view_options = {"color": {"grid": cfg.color_grid}, "lbp": {"radius": cfg.lbp_radius}}
         self._rng = np.random.default_rng(cfg.seed)
-        self._state = box_to_affine(b)
+        self._state = box_to_affine(wb)
+        self._work_box = tuple(float(v) for v in wb)
         self._box = tuple(float(v) for v in b)
         t_states = self._template_states(self._state)
         self._templates = TemplateSet([np.array(v, dtype=np.float32) for v in self._views(prepared, t_states)])
@@ -177,53 +230,89 @@ class Tracker:
         self._intensity_index = cfg.views.index("intensity") if "intensity" in cfg.views else None
         self._initialized = True
 
-    def _update(self, frame: np.ndarray) -> TrackResult:
+    # -- the working frame (config.frame_size) ------------------------------
+    def _prepare(self, frame, where: str, channels):
+        if self.config.frame_size is not None:
+            frame = resize_frame(to_unit_range(frame, where), self.config.frame_size)
+        return prepare_frame(frame, where, channels)
+
+    def _to_work(self, boxes) -> np.ndarray:
+        """0-based boxes of the input frame -> of the working frame."""
+        return np.asarray(boxes, dtype=np.float64) * np.tile(self._scale, 2)
+
+    def _from_work(self, boxes) -> np.ndarray:
+        """0-based boxes of the working frame -> of the input frame."""
+        return np.asarray(boxes, dtype=np.float64) / np.tile(self._scale, 2)
+
+    def update_detailed(self, frame: np.ndarray, probes=None) -> tuple["TrackResult", "FrameDetail"]:
+        """:meth:`update`, also returning what was computed (:class:`FrameDetail`).
+
+        ``probes`` : optional (m, 4) 0-based boxes ``(x, y, w, h)`` scored as extra
+        candidates of this frame (for example the ground truth, in
+        ``bench/diagnose.py``). They are coded like the particles but take no
+        part in the choice, the resampling or the template update, so the
+        tracker's state is the same as without them.
+        """
+        with self._blas_limit():
+            return self._update(frame, probes)
+
+    def _update(self, frame: np.ndarray, probes=None):
         if not self._initialized:
             raise RuntimeError("update called before init")
         cfg = self.config
         self._frame_index += 1
         with self._timed("preprocess"):
-            prepared = prepare_frame(frame, f"frame {self._frame_index}", self._channels)
+            prepared = self._prepare(frame, f"frame {self._frame_index}", self._channels)
 
         particles = resample(self._particles, self._weights, cfg.n_particles)
         particles = propagate(particles, cfg.affine_std, self._rng)
-        X = self._views(prepared, particles)
-        D = self._templates.dictionaries
-        with self._timed("solve"):
-            if cfg.model == "smtmvt":
-                C, E = solve_smtmvt(X, D, lam=cfg.lam, gamma=cfg.gamma, method=cfg.solver,
-                                    tol=cfg.solver_tol, max_iter=cfg.solver_max_iter)
-            else:
-                C, E = SOLVERS[cfg.model](X, D, tol=cfg.solver_tol, max_iter=cfg.solver_max_iter)
-            residual = reconstruction_residual(X, D, C)
+        n = len(particles)
+        probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
+        states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
+        X = self._views(prepared, states)
         # A candidate mostly outside the image is not a valid observation.
-        valid = inside_fraction(particles, prepared.shape) >= 0.5
-        p = likelihoods(residual, cfg.alpha, valid)
+        valid = inside_fraction(states, prepared.shape) >= 0.5
+        is_probe = np.arange(len(states)) >= n
+        with self._timed("solve"):
+            obs = observe(X, self._templates.dictionaries, self._code, cfg.alpha,
+                          valid=valid & ~is_probe, eps=cfg.prune_eps, always=is_probe)
+        p = obs.likelihood[:n]
 
         if not np.any(p > 0):
             # Nothing explains the frame: keep the previous state (no NaN ever leaves).
             self._particles = np.repeat(self._state[None], cfg.n_particles, axis=0)
             self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
-            return TrackResult(self._box, 0.0, float("inf"), True, None, self._frame_index)
+            result = TrackResult(self._box, 0.0, float("inf"), True, None, self._frame_index)
+            return result, FrameDetail(particles, obs, None, probe_boxes, self._scale)
 
         best = int(np.argmax(p))
         with self._timed("update"):
             decision = self._templates.update(
-                [Xk[:, best] for Xk in X], C[:, :, best], [Ek[:, best] for Ek in E],
+                [Xk[:, best] for Xk in X], obs.C[:, :, best], [Ek[:, best] for Ek in obs.E],
                 update_angle=cfg.update_angle, occlusion_fraction=cfg.occlusion_fraction,
                 intensity_view=self._intensity_index,
             )
         self._state = particles[best].copy()
-        self._box = tuple(float(v) for v in affine_to_box(self._state))
+        self._work_box = tuple(float(v) for v in affine_to_box(self._state))
+        self._box = tuple(float(v) for v in self._from_work(self._work_box))
         self._particles, self._weights = particles, p
-        return TrackResult(
+        result = TrackResult(
             box=self._box,
-            score=float(np.exp(-cfg.alpha * residual[best])),
-            residual=float(residual[best]),
+            score=float(p[best]),
+            residual=float(obs.residual[best]),
             occluded=decision.occluded,
             template_replaced=decision.replaced,
             frame_index=self._frame_index,
         )
+        return result, FrameDetail(particles, obs, best, probe_boxes, self._scale)
+
+    def _code(self, X, D):
+        """The observation model's solver on candidate views ``X`` (a subset of columns)."""
+        cfg = self.config
+        if cfg.model == "smtmvt":
+            return solve_smtmvt(X, D, lam=cfg.lam, gamma=cfg.gamma, method=cfg.solver,
+                                tol=cfg.solver_tol, max_iter=cfg.solver_max_iter)
+        return SOLVERS[cfg.model](X, D, tol=cfg.solver_tol, max_iter=cfg.solver_max_iter)
 
     @property
     def box(self) -> tuple:

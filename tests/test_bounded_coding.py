@@ -1,0 +1,131 @@
+"""Bounded coding: the least-squares bound, per-candidate solves, and skipping candidates."""
+
+import numpy as np
+import pytest
+
+from smtmvt import Tracker, TrackerConfig
+from smtmvt.demo import make_demo_sequence
+from smtmvt.likelihood import observe
+from smtmvt.solvers import reconstruction_residual, solve_smtmvt
+from smtmvt.solvers.bounds import least_squares_residuals, range_basis
+from smtmvt.solvers.prox import singular_value_threshold
+
+from solver_instances import make_instance  # noqa: E402
+
+
+def _code(X, D):
+    return solve_smtmvt(X, D, lam=0.1, gamma=0.25, tol=1e-8, max_iter=5000)
+
+
+def test_least_squares_bound_equals_lstsq_and_bounds_every_code():
+    X, D = make_instance(30, K=3, N=5, n=7)
+    bound = least_squares_residuals(X, D)
+    ref = np.zeros(7)
+    for Xk, Dk in zip(X, D):
+        coef, *_ = np.linalg.lstsq(Dk, Xk, rcond=None)
+        ref += ((Dk @ coef - Xk) ** 2).sum(axis=0)
+    np.testing.assert_allclose(bound, ref, rtol=1e-10, atol=1e-12)
+    C, _ = _code(X, D)
+    assert np.all(bound <= reconstruction_residual(X, D, C) + 1e-12)
+    rng = np.random.default_rng(0)
+    for _ in range(20):  # any code, not only the optimum
+        Cr = np.abs(rng.standard_normal(C.shape))
+        assert np.all(bound <= reconstruction_residual(X, D, Cr) + 1e-12)
+
+
+def test_range_basis_drops_duplicate_templates():
+    X, D = make_instance(31, K=1, N=4, n=3)
+    Dd = np.column_stack([D[0], D[0][:, :2]])  # two duplicated templates
+    Q = range_basis(Dd)
+    assert Q.shape[1] == 4
+    np.testing.assert_allclose(Q.T @ Q, np.eye(4), atol=1e-12)
+    np.testing.assert_allclose(least_squares_residuals(X, [Dd]), least_squares_residuals(X, D), atol=1e-12)
+
+
+def test_each_candidate_is_solved_independently():
+    """The ADMM runs per candidate: a subset of the columns gets the same codes."""
+    X, D = make_instance(32, K=4, N=6, n=9)
+    C_all, _ = solve_smtmvt(X, D, tol=1e-6)
+    for subset in ([0], [3, 7], [8, 1, 5]):
+        C_sub, _ = solve_smtmvt([x[:, subset] for x in X], D, tol=1e-6)
+        np.testing.assert_allclose(C_sub, C_all[:, :, subset], rtol=0, atol=1e-12)
+
+
+def test_svt_per_slice_thresholds_equal_one_call_per_slice():
+    rng = np.random.default_rng(3)
+    P = rng.standard_normal((5, 6, 4))
+    tau = np.array([0.0, 0.3, 1.0, 2.5, 10.0])
+    out = singular_value_threshold(P, tau)
+    for i in range(5):
+        np.testing.assert_allclose(out[i], singular_value_threshold(P[i:i + 1], tau[i])[0], atol=1e-12)
+
+
+def test_observe_skips_only_candidates_that_cannot_matter():
+    X, D = make_instance(33, K=3, N=5, n=40)
+    full = observe(X, D, _code, alpha=30.0, eps=0.0)
+    eps = 1e-3
+    pruned = observe(X, D, _code, alpha=30.0, eps=eps)
+    assert full.coded.all() and 0 < pruned.coded.sum() < 40  # this instance does skip some
+    best = int(np.argmax(full.likelihood))
+    assert int(np.argmax(pruned.likelihood)) == best
+    np.testing.assert_allclose(pruned.residual[pruned.coded], full.residual[pruned.coded], atol=1e-12)
+    skipped = ~pruned.coded
+    # every skipped candidate's exact likelihood is below eps times the best one
+    assert np.all(full.likelihood[skipped] < eps * full.likelihood[best])
+    assert np.all(pruned.likelihood[skipped] == 0) and np.all(np.isnan(pruned.residual[skipped]))
+
+
+def test_observe_probes_are_coded_but_change_nothing():
+    X, D = make_instance(34, K=3, N=5, n=30)
+    valid = np.ones(30, dtype=bool)
+    valid[-2:] = False
+    probes = ~valid
+    with_probes = observe(X, D, _code, alpha=30.0, valid=valid, eps=1e-3, always=probes)
+    without = observe([x[:, :-2] for x in X], D, _code, alpha=30.0, eps=1e-3)
+    assert with_probes.coded[-2:].all() and np.all(with_probes.likelihood[-2:] > 0)
+    np.testing.assert_array_equal(with_probes.coded[:-2], without.coded)
+    np.testing.assert_allclose(with_probes.likelihood[:-2], without.likelihood, rtol=1e-12)
+
+
+@pytest.fixture(scope="module")
+def demo():
+    return make_demo_sequence(n_frames=12)
+
+
+def _boxes(demo, config, probes=False):
+    t = Tracker(config)
+    t.init(demo.frames[0], demo.groundtruth[0])
+    out = []
+    for i in range(1, len(demo.frames)):
+        if probes:
+            r, detail = t.update_detailed(demo.frames[i], probes=[demo.groundtruth[i], (5, 5, 20, 20)])
+            assert detail.probe_likelihood.shape == (2,)
+        else:
+            r = t.update(demo.frames[i])
+        out.append(r.box)
+    return np.array(out)
+
+
+def test_tracker_boxes_do_not_depend_on_bounded_coding_or_probes(demo):
+    cfg = TrackerConfig(n_particles=120, seed=4)
+    pruned = _boxes(demo, cfg)
+    np.testing.assert_array_equal(pruned, _boxes(demo, cfg.replace(prune_eps=0.0)))
+    np.testing.assert_array_equal(pruned, _boxes(demo, cfg, probes=True))
+
+
+def test_frame_size_tracks_in_the_working_frame_and_maps_boxes_back(demo):
+    """Frames upscaled 2x and tracked at frame_size = the original size give twice the boxes."""
+    frames = demo.frames[:6]
+    H, W = frames[0].shape[:2]
+    big = [np.repeat(np.repeat(f, 2, axis=0), 2, axis=1) for f in frames]
+    cfg = TrackerConfig(n_particles=60, seed=2)
+    box = np.asarray(demo.groundtruth[0], dtype=float)
+
+    def run(fr, b, c):
+        t = Tracker(c)
+        t.init(fr[0], b)
+        return np.array([t.update(f).box for f in fr[1:]])
+
+    small = run(frames, box, cfg)
+    scaled = run(big, 2 * box, cfg.replace(frame_size=(W, H)))
+    np.testing.assert_allclose(scaled, 2 * small, rtol=1e-12)
