@@ -22,7 +22,7 @@ from smtmvt.features import (
 )
 from smtmvt.features import views as views_module
 from smtmvt.features.color import color_histograms, color_view
-from smtmvt.features.hog import _exact_bins, _orientation_bins, hog_descriptors, hog_dim
+from smtmvt.features.hog import hog_descriptors, hog_dim, orientation_bins
 from smtmvt.features.lbp import lbp_codes, lbp_histograms, lbp_view
 from smtmvt.features.tan_triggs import difference_of_gaussians
 
@@ -99,6 +99,15 @@ def test_hog_matches_skimage_on_partial_cells(camera_tt):
     assert_allclose(ours, ref, rtol=0, atol=1e-6)
 
 
+def _skimage_bins(g_row, g_col, orientations):
+    """skimage's binning, verbatim: float64 orientation, float32-rounded edges
+    (``orientations`` = no bin, for an angle that rounds to exactly 180)."""
+    orientation = np.rad2deg(np.arctan2(g_row.astype(np.float64), g_col.astype(np.float64))) % 180
+    edges = np.array([np.float32(180.0 / orientations * i) for i in range(orientations + 1)],
+                     dtype=np.float64)
+    return np.searchsorted(edges, orientation, side="right") - 1
+
+
 def test_hog_orientation_bins_equal_skimage_float64_binning():
     rng = np.random.default_rng(3)
     g_row = np.concatenate([
@@ -109,8 +118,14 @@ def test_hog_orientation_bins_equal_skimage_float64_binning():
         rng.integers(-4, 5, 200_000), rng.standard_normal(200_000),
         [1.0, -1.0, -1.0, -1.0, 0.0, 0.0, 0.0],
     ]).astype(np.float32)
-    exact = _exact_bins(g_row, g_col, 9)
-    assert_array_equal(_orientation_bins(g_row, g_col, 9), exact)
+    exact = _skimage_bins(g_row, g_col, 9)
+    assert_array_equal(orientation_bins(g_row, g_col, 9), exact)
+    # gradients on the bin edges themselves (the atan2 fallback), float64 too
+    angles = np.radians(np.arange(0, 360, 20.0))
+    for scale in (1.0, 3.7e-3, 250.0):
+        r, c = scale * np.sin(angles), scale * np.cos(angles)
+        for nudge in (0.0, 1e-12, -1e-12):
+            assert_array_equal(orientation_bins(r + nudge, c, 9), _skimage_bins(r + nudge, c, 9))
     # skimage's quirk: an angle that rounds to 180 degrees falls in no bin.
     assert exact[400_000] == 9
 
@@ -289,6 +304,20 @@ def test_color_gray_fallback():
     assert_allclose(hist.sum(axis=1), 1.0, atol=1e-6)
     (X,) = extract_views(patches, ("color",))
     assert X.shape == (16, 4) and np.all(np.isfinite(X))
+
+
+def test_color_grid_is_the_histograms_of_the_cells():
+    rng = np.random.default_rng(8)
+    patches = _make_patches(3, rng)
+    out = color_view(patches, grid=2)
+    c = patches.color
+    cells = [c[:, :16, :16], c[:, :16, 16:], c[:, 16:, :16], c[:, 16:, 16:]]
+    ref = np.concatenate([color_histograms(np.ascontiguousarray(q)) for q in cells], axis=1)
+    assert out.shape == (3, 4 * 48)
+    assert_array_equal(out, ref)
+    assert_array_equal(color_view(patches, grid=1), color_histograms(c))
+    with pytest.raises(ValueError, match="grid"):
+        color_view(patches, grid=33)
 
 
 def test_color_values_outside_unit_range_are_clipped():

@@ -12,10 +12,23 @@ from __future__ import annotations
 
 import cv2
 import numpy as np
+from numba import njit
 
 from .geometry import REF
 
-__all__ = ["sampling_grid", "warp_patches", "inside_fraction"]
+__all__ = ["sampling_grid", "remap_patches", "warp_patches", "inside_fraction"]
+
+
+@njit(cache=True, nogil=True)
+def _grid_kernel(params, u, v, X, Y):  # pragma: no cover - compiled (tested through sampling_grid)
+    for k in range(params.shape[0]):
+        a11, a12, a21, a22, tx, ty = params[k]
+        for i in range(v.shape[0]):
+            for j in range(u.shape[0]):
+                # float64, in the order numpy's broadcast expression used, then rounded to float32
+                X[k, i, j] = a11 * u[j] + a12 * v[i] + tx
+                Y[k, i, j] = a21 * u[j] + a22 * v[i] + ty
+    return X, Y
 
 
 def sampling_grid(params, size) -> tuple[np.ndarray, np.ndarray]:
@@ -32,16 +45,44 @@ def sampling_grid(params, size) -> tuple[np.ndarray, np.ndarray]:
 
     Returns
     -------
-    X, Y : (n, ph, pw) float32 image coordinates (0-based pixel centres).
+    X, Y : (n, ph, pw) float32 image coordinates (0-based pixel centres),
+    computed in float64 and rounded once (a compiled loop: no float64
+    temporaries of the whole grid).
     """
-    p = np.atleast_2d(np.asarray(params, dtype=np.float64))
+    p = np.ascontiguousarray(np.atleast_2d(np.asarray(params, dtype=np.float64)))
     ph, pw = int(size[0]), int(size[1])
     u = ((np.arange(pw) + 0.5) / pw - 0.5) * REF
     v = ((np.arange(ph) + 0.5) / ph - 0.5) * REF
-    a11, a12, a21, a22, tx, ty = (p[:, k, None, None] for k in range(6))
-    X = a11 * u[None, None, :] + a12 * v[None, :, None] + tx
-    Y = a21 * u[None, None, :] + a22 * v[None, :, None] + ty
-    return X.astype(np.float32), Y.astype(np.float32)
+    X = np.empty((len(p), ph, pw), dtype=np.float32)
+    Y = np.empty((len(p), ph, pw), dtype=np.float32)
+    return _grid_kernel(p, u, v, X, Y)
+
+
+def remap_patches(image: np.ndarray, X: np.ndarray, Y: np.ndarray) -> np.ndarray:
+    """Bilinear samples of ``image`` at the grid ``X, Y (n, ph, pw)`` of :func:`sampling_grid`.
+
+    Parameters
+    ----------
+    image : (H, W) or (H, W, C) float32 image, C <= 4.
+
+    Returns
+    -------
+    (n, ph, pw) or (n, ph, pw, C) float32 patches. Pixels outside the image
+    take the value of the nearest border pixel.
+    """
+    img = np.ascontiguousarray(image, dtype=np.float32)
+    n, ph, pw = X.shape
+    # cv2.remap limits map dimensions to < 32767: split very large batches.
+    rows_per_chunk = max(1, 32000 // ph)
+    chunks = []
+    for s in range(0, n, rows_per_chunk):
+        mx = X[s : s + rows_per_chunk].reshape(-1, pw)
+        my = Y[s : s + rows_per_chunk].reshape(-1, pw)
+        chunks.append(
+            cv2.remap(img, mx, my, interpolation=cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
+        )
+    out = np.concatenate(chunks, axis=0)
+    return out.reshape((n, ph, pw) + img.shape[2:])
 
 
 def warp_patches(image: np.ndarray, params, size) -> np.ndarray:
@@ -57,20 +98,8 @@ def warp_patches(image: np.ndarray, params, size) -> np.ndarray:
     -------
     (n, ph, pw) or (n, ph, pw, C) float32 patches.
     """
-    img = np.ascontiguousarray(image, dtype=np.float32)
     X, Y = sampling_grid(params, size)
-    n, ph, pw = X.shape
-    # cv2.remap limits map dimensions to < 32767: split very large batches.
-    rows_per_chunk = max(1, 32000 // ph)
-    chunks = []
-    for s in range(0, n, rows_per_chunk):
-        mx = X[s : s + rows_per_chunk].reshape(-1, pw)
-        my = Y[s : s + rows_per_chunk].reshape(-1, pw)
-        chunks.append(
-            cv2.remap(img, mx, my, interpolation=cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
-        )
-    out = np.concatenate(chunks, axis=0)
-    return out.reshape((n, ph, pw) + img.shape[2:])
+    return remap_patches(image, X, Y)
 
 
 def inside_fraction(params, image_shape, size=(8, 8)) -> np.ndarray:

@@ -29,12 +29,14 @@ Colors are expected in [0, 1]; values outside are clipped.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+from numba import njit
 
 __all__ = ["COLOR_BINS", "color_histograms", "color_view", "soft_binning_matrix"]
 
 COLOR_BINS = 16  # bins per channel
-BLOCK = 64       # patches per vectorized pass (cache-sized work buffers)
 
 
 _LEVELS = 256  # colors are quantized to 8 bits before binning
@@ -58,6 +60,28 @@ def soft_binning_matrix(bins: int = COLOR_BINS, levels: int = _LEVELS) -> np.nda
     return weights
 
 
+@njit(cache=True, nogil=True, boundscheck=False)
+def _level_counts(colors, counts):  # pragma: no cover - compiled
+    """``counts[patch, channel, level] +=`` 1 per pixel, levels ``round(255 v)`` of ``v`` clipped to [0, 1].
+
+    The rounding is done in float32 as ``floor(clip(255 v + 0.5, 0.5, 255.5))``
+    (round half up; clipping after the scale equals clipping to [0, 1] first;
+    the value is positive, so truncation is the floor).
+    """
+    n, h, w, c = colors.shape
+    scale = np.float32(_LEVELS - 1)
+    half = np.float32(0.5)
+    top = np.float32(_LEVELS - 0.5)
+    levels = np.empty(h * w * c, np.int64)
+    for k in range(n):
+        flat = colors[k].ravel()
+        for i in range(flat.shape[0]):  # vectorizes
+            levels[i] = np.int64(min(max(flat[i] * scale + half, half), top))
+        for i in range(flat.shape[0]):
+            counts[k, i % c, levels[i]] += 1
+    return counts
+
+
 def color_histograms(colors: np.ndarray, bins: int = COLOR_BINS) -> np.ndarray:
     """Soft-binned per-channel histograms of a stack of color patches.
 
@@ -77,7 +101,7 @@ def color_histograms(colors: np.ndarray, bins: int = COLOR_BINS) -> np.ndarray:
     -----
     Values are first rounded to 8 bits (``round(255 v)``, the precision of
     the source frames; it moves a vote by at most 1/32 of a bin at 16 bins),
-    counted per patch and channel with one integer ``bincount``, and the
+    counted per patch and channel by a compiled (numba) loop, and the
     256-level counts are mapped to the bins by :func:`soft_binning_matrix`.
     """
     colors = np.asarray(colors)
@@ -87,37 +111,41 @@ def color_histograms(colors: np.ndarray, bins: int = COLOR_BINS) -> np.ndarray:
         raise ValueError(f"bins must be >= 2, got {bins}")
     bins = int(bins)
     n, h, w, c = colors.shape
-    counts = np.empty((n * c, _LEVELS), dtype=np.float64)
-    b = min(n, BLOCK)
-    # Flat level index per (patch, channel): (patch * C + channel) * 256 + level. The
-    # offsets are exact integers in float32 (< 2**24), added after rounding.
-    offsets = np.ascontiguousarray(np.broadcast_to(
-        (np.arange(b * c, dtype=np.float32) * _LEVELS).reshape(b, 1, 1, c), (b, h, w, c)))
-    scaled = np.empty((b, h, w, c), dtype=np.float32)
-    for start in range(0, n, b):  # blocks of patches keep the buffers in cache
-        m = min(b, n - start)
-        buf = scaled[:m]
-        np.multiply(colors[start:start + m], np.float32(_LEVELS - 1), out=buf, casting="unsafe")
-        buf += np.float32(0.5)
-        np.clip(buf, np.float32(0.5), np.float32(_LEVELS - 0.5), out=buf)  # == clip to [0, 1] first
-        np.floor(buf, out=buf)  # round half up to a level in [0, 255]
-        buf += offsets[:m]
-        counts[start * c:(start + m) * c] = np.bincount(
-            buf.astype(np.intp).ravel(), minlength=m * c * _LEVELS).reshape(m * c, _LEVELS)
-    hist = counts @ soft_binning_matrix(bins, _LEVELS)
+    counts = np.zeros((n, c, _LEVELS), dtype=np.int32)
+    _level_counts(np.ascontiguousarray(colors, dtype=np.float32), counts)
+    hist = counts.reshape(n * c, _LEVELS) @ soft_binning_matrix(bins, _LEVELS)
     return (hist.reshape(n, c * bins) / (h * w)).astype(np.float32)
 
 
-def color_view(patches) -> np.ndarray:
-    """Color histogram view.
+def color_view(patches, grid: int = 1) -> np.ndarray:
+    """Color histogram view, over the whole patch or per cell of a ``grid x grid`` layout.
 
     Parameters
     ----------
     patches : Patches
         Uses ``patches.color``, ``(n, fh, fw, C)`` float32 in [0, 1].
+    grid : int
+        Cells per side. 1 (the paper's view): one histogram of the whole
+        patch. A histogram of the whole box barely depends on where the box
+        is (measured on 18 OTB sequences: a box shifted by half its size is as
+        similar to the first-frame template as the true box); per cell, the
+        histograms keep the colors' layout. Cell ``j`` along an axis of length
+        L covers ``[j L // grid, (j + 1) L // grid)``.
 
     Returns
     -------
-    (n, C * 16) float32 ndarray: 48 values for RGB, 16 for gray frames.
+    (n, grid * grid * C * 16) float32 ndarray, ordered ``(cell_row, cell_col,
+    channel, bin)``: 48 values for RGB, 16 for gray frames at ``grid = 1``.
     """
-    return color_histograms(patches.color, COLOR_BINS)
+    colors = patches.color
+    grid = int(grid)
+    if grid == 1:
+        return color_histograms(colors, COLOR_BINS)
+    n, h, w, _ = colors.shape
+    if not 1 <= grid <= min(h, w):
+        raise ValueError(f"color grid must be in [1, {min(h, w)}] for {h}x{w} patches, got {grid}")
+    rows = (np.arange(grid + 1) * h) // grid
+    cols = (np.arange(grid + 1) * w) // grid
+    cells = [color_histograms(colors[:, rows[i]:rows[i + 1], cols[j]:cols[j + 1]], COLOR_BINS)
+             for i in range(grid) for j in range(grid)]
+    return np.concatenate(cells, axis=1)

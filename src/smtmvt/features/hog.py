@@ -7,10 +7,10 @@ feature_vector=True)`` (scikit-image 0.2x, single channel, no
 
 * gradients by central differences in the patch's float dtype, zero on the
   first and last row (for ``g_row``) and column (for ``g_col``);
-* magnitude ``hypot(g_row, g_col)`` (here ``sqrt(g_row**2 + g_col**2)`` in
-  the patch dtype, within one float32 ulp of skimage's float64 ``hypot``),
-  orientation ``degrees(arctan2(g_row, g_col)) % 180`` in float64 (here
-  bit-identical bins from a float32 shortcut, see :func:`_orientation_bins`); bin ``i`` takes the
+* magnitude ``hypot(g_row, g_col)`` in float64 (here ``sqrt(g_row**2 +
+  g_col**2)``, within one float64 ulp), orientation ``degrees(arctan2(g_row,
+  g_col)) % 180`` in float64 (here bit-identical bins found without atan2
+  except at bin edges, see :func:`_fast_bin`); bin ``i`` takes the
   orientations in ``[180 i / O, 180 (i + 1) / O)`` with the bin edges rounded
   to float32 as skimage does; an orientation that rounds to 180 falls in no bin;
 * cell histogram = sum of the magnitudes over the cell's pixels divided by the
@@ -19,23 +19,26 @@ feature_vector=True)`` (scikit-image 0.2x, single channel, no
 * L2-Hys block normalization with ``eps = 1e-5`` over every (overlapping)
   block; output ordered ``(block_row, block_col, cell_row, cell_col, bin)``.
 
-Cell histograms are computed for ``BLOCK`` patches at a time (vectorized
-within the block), which keeps the work buffers in cache and is about 1.4x
-faster than a single pass over 400 patches.
+Cell histograms are one compiled (numba) pass over the pixels of all patches
+(about 2.5x less CPU time than the vectorized numpy version it replaced: 4 ms
+against 11 ms for 400 patches of 32x32 on the 2-core development machine);
+block normalization stays in numpy.
 """
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
-__all__ = ["hog_descriptors", "hog_view", "hog_dim",
+import numpy as np
+from numba import njit
+
+__all__ = ["hog_descriptors", "hog_view", "hog_dim", "orientation_bins", "bin_edges",
            "HOG_ORIENTATIONS", "HOG_CELL", "HOG_BLOCK"]
 
 HOG_ORIENTATIONS = 9
 HOG_CELL = (8, 8)   # pixels per cell (rows, cols)
 HOG_BLOCK = (2, 2)  # cells per block (rows, cols)
 _EPS = 1e-5         # skimage's block-normalization epsilon
-BLOCK = 64          # patches per vectorized pass (cache-sized work buffers)
 
 
 def hog_dim(shape: tuple[int, int], orientations: int = HOG_ORIENTATIONS,
@@ -47,42 +50,142 @@ def hog_dim(shape: tuple[int, int], orientations: int = HOG_ORIENTATIONS,
     return max(nbr, 0) * max(nbc, 0) * cells_per_block[0] * cells_per_block[1] * orientations
 
 
-_NEAR_EDGE = 1e-3  # degrees; a float32 orientation this close to a bin edge is redone in float64
+_NEAR_EDGE = 1e-9  # relative distance to a bin edge below which a pixel is binned by atan2
+
+
+def bin_edges(orientations: int) -> np.ndarray:
+    """skimage's bin edges in degrees, ``180 i / O`` rounded to float32, as float64 ``(O + 1,)``."""
+    return np.array([np.float32(180.0 / orientations * i) for i in range(orientations + 1)],
+                    dtype=np.float64)
 
 
 def _exact_bins(g_row: np.ndarray, g_col: np.ndarray, orientations: int) -> np.ndarray:
-    """skimage's binning, verbatim: float64 orientation, float32-rounded edges.
+    """skimage's binning, with numpy's own float64 arctan2 (whose last bit can differ
+    from the C library's, which compiled code would call).
 
     Returns bin indices in ``[0, orientations]``; ``orientations`` means no bin
     (an orientation that rounds to exactly 180 degrees).
     """
     orientation = np.arctan2(g_row.astype(np.float64), g_col.astype(np.float64)) * (180 / np.pi) % 180
-    edges = np.array([np.float32(180.0 / orientations * i) for i in range(orientations + 1)],
-                     dtype=np.float64)
-    return np.searchsorted(edges, orientation, side="right") - 1
+    return np.searchsorted(bin_edges(orientations), orientation, side="right") - 1
 
 
-def _orientation_bins(g_row: np.ndarray, g_col: np.ndarray, orientations: int) -> np.ndarray:
-    """Orientation bin of every pixel, identical to skimage's float64 binning.
+@njit(cache=True, nogil=True)
+def _fast_bin(g_row, g_col, cos_e, sin_e):  # pragma: no cover - compiled
+    """skimage's bin of one gradient (float64), or -1 where only atan2 can tell.
 
-    The bins are found from a float32 ``arctan2`` (3x faster than float64);
-    the float32 bin position is within 1e-5 bins (2e-4 degrees) of the exact
-    one, so only pixels within ``_NEAR_EDGE`` degrees of a bin edge can differ
-    from skimage's binning, and those (about 1e-4 of them) are recomputed with
-    :func:`_exact_bins`. Returns ``(...)`` intp in ``[0, orientations]``.
+    The gradient is folded into the upper half-plane (``(g_row, g_col)`` and
+    its negation have the same orientation modulo 180 degrees); its bin is
+    then the number of interior edges ``e`` it lies beyond, ``g_row cos e -
+    g_col sin e >= 0``. ``g_row == 0`` is bin 0 (skimage: ``atan2(+-0, g_col)``
+    is 0 or +-180 degrees, and ``% 180`` makes both 0). Elsewhere within a
+    relative ``1e-9`` of an edge (0/180 degrees included), the geometric test
+    and skimage's rounded float64 angle could disagree: -1 asks the caller
+    for :func:`_exact_bins`.
     """
-    per_bin = np.float32(orientations / np.pi)  # bins per radian over 180 degrees
-    pos = np.arctan2(g_row.astype(np.float32), g_col.astype(np.float32)) * per_bin  # [-O, O]
-    pos += np.float32(orientations) * (pos < 0)  # 180-degree periodicity -> [0, O]
-    low = np.floor(pos)
-    frac = pos - low
-    margin = np.float32(_NEAR_EDGE * orientations / 180.0)
-    near = np.flatnonzero((frac < margin) | (frac > 1 - margin))
-    # Values of O (and any bin an edge could flip) are among the `near` pixels.
-    bins = low.astype(np.intp).ravel()
-    if near.size:
-        bins[near] = _exact_bins(g_row.ravel()[near], g_col.ravel()[near], orientations)
-    return bins.reshape(pos.shape)
+    if g_row == 0.0:
+        return 0
+    s = 1.0 if g_row > 0 else -1.0
+    a = g_row * s
+    b = g_col * s
+    tol = _NEAR_EDGE * math.sqrt(a * a + b * b)
+    if a <= tol:
+        return -1
+    count = 0
+    for i in range(1, cos_e.shape[0] - 1):
+        x = a * cos_e[i] - b * sin_e[i]
+        if abs(x) <= tol:
+            return -1
+        count += x >= 0
+    return count
+
+
+@njit(cache=True, nogil=True)
+def _bins_kernel(g_row, g_col, cos_e, sin_e, out):  # pragma: no cover - compiled
+    for i in range(g_row.shape[0]):
+        out[i] = _fast_bin(np.float64(g_row[i]), np.float64(g_col[i]), cos_e, sin_e)
+    return out
+
+
+def _edge_trig(orientations: int):
+    rad = bin_edges(orientations) * (np.pi / 180)
+    return np.cos(rad), np.sin(rad)
+
+
+def orientation_bins(g_row: np.ndarray, g_col: np.ndarray, orientations: int) -> np.ndarray:
+    """Orientation bin of each gradient, identical to skimage's float64 binning.
+
+    ``g_row``, ``g_col``: arrays of one shape (float32 or float64). Returns intp
+    bins in ``[0, orientations]``; ``orientations`` means no bin (an angle that
+    rounds to exactly 180 degrees, as in skimage).
+    """
+    shape = np.shape(g_row)
+    g_row = np.ascontiguousarray(g_row).ravel()
+    g_col = np.ascontiguousarray(g_col).ravel()
+    out = np.empty(g_row.size, dtype=np.intp)
+    _bins_kernel(g_row, g_col, *_edge_trig(orientations), out)
+    near = np.flatnonzero(out < 0)
+    out[near] = _exact_bins(g_row[near], g_col[near], orientations)
+    return out.reshape(shape)
+
+
+@njit(cache=True, nogil=True, boundscheck=False)
+def _cells_kernel(images, cell_rows, cell_cols, cos_e, sin_e, out, near):  # pragma: no cover - compiled
+    """Add each pixel's gradient magnitude to ``out[patch, cell row, cell col, bin]``.
+
+    The binning of :func:`_fast_bin`, written row by row so that the loops over
+    the columns vectorize. Pixels it cannot bin are skipped and listed in
+    ``near`` (rows: patch, row, column, g_row, g_col); returns their count.
+    """
+    n, h, w = images.shape
+    H = (h // cell_rows) * cell_rows
+    W = (w // cell_cols) * cell_cols
+    n_edges = cos_e.shape[0] - 1
+    g_row = np.empty(W)
+    g_col = np.empty(W)
+    a = np.empty(W)
+    b = np.empty(W)
+    mag = np.empty(W)
+    closest = np.empty(W)
+    count = np.empty(W, np.int64)
+    m = 0
+    for k in range(n):
+        img = images[k]
+        for r in range(H):
+            # central differences in the patch dtype, zero on the border (skimage)
+            for c in range(W):
+                g_row[c] = np.float64(img[r + 1, c] - img[r - 1, c]) if 0 < r < h - 1 else 0.0
+                g_col[c] = np.float64(img[r, c + 1] - img[r, c - 1]) if 0 < c < w - 1 else 0.0
+            for c in range(W):  # fold into the upper half-plane
+                s = 1.0 if g_row[c] >= 0 else -1.0
+                a[c] = g_row[c] * s
+                b[c] = g_col[c] * s
+                mag[c] = math.sqrt(g_row[c] * g_row[c] + g_col[c] * g_col[c])
+                closest[c] = a[c]
+                count[c] = 0
+            for i in range(1, n_edges):
+                ce = cos_e[i]
+                se = sin_e[i]
+                for c in range(W):
+                    x = a[c] * ce - b[c] * se
+                    count[c] += x >= 0
+                    closest[c] = min(closest[c], abs(x))
+            rc = r // cell_rows
+            for c in range(W):
+                if g_row[c] == 0.0:
+                    bin_ = 0
+                elif closest[c] <= _NEAR_EDGE * mag[c]:
+                    near[m, 0] = k
+                    near[m, 1] = r
+                    near[m, 2] = c
+                    near[m, 3] = g_row[c]
+                    near[m, 4] = g_col[c]
+                    m += 1
+                    continue
+                else:
+                    bin_ = count[c]
+                out[k, rc, c // cell_cols, bin_] += mag[c]
+    return m
 
 
 def _cell_histograms(images: np.ndarray, orientations: int,
@@ -90,31 +193,16 @@ def _cell_histograms(images: np.ndarray, orientations: int,
     """(n, H, W) float -> (n, n_cells_row, n_cells_col, orientations) float64."""
     n, h, w = images.shape
     cr, cc = pixels_per_cell
-    ncr, ncc = h // cr, w // cc
-    g_row = np.zeros_like(images)
-    g_col = np.zeros_like(images)
-    g_row[:, 1:-1, :] = images[:, 2:, :] - images[:, :-2, :]
-    g_col[:, :, 1:-1] = images[:, :, 2:] - images[:, :, :-2]
-    # Only the pixels inside full cells vote.
-    g_row = g_row[:, : ncr * cr, : ncc * cc]
-    g_col = g_col[:, : ncr * cr, : ncc * cc]
-    # skimage takes hypot in float64; the float32 magnitude differs by < 1 float32 ulp.
-    magnitude = np.sqrt(g_row * g_row + g_col * g_col)
-    if g_row.dtype == np.float32:
-        bins = _orientation_bins(g_row, g_col, orientations)
-    else:  # the float32 shortcut could flush tiny float64 gradients; bin them exactly
+    hist = np.zeros((n, h // cr, w // cc, orientations))
+    near = np.empty((n * (h // cr) * cr * (w // cc) * cc, 5))
+    m = _cells_kernel(np.ascontiguousarray(images), cr, cc, *_edge_trig(orientations), hist, near)
+    if m:  # the pixels binned by atan2 (rare on real images)
+        k, r, c, g_row, g_col = near[:m].T
         bins = _exact_bins(g_row, g_col, orientations)
-    dropped = bins == orientations
-    if dropped.any():  # rare: orientation rounded to 180 degrees, in no bin (as skimage)
-        magnitude = np.where(dropped, 0, magnitude)
-        bins = np.where(dropped, 0, bins)
-    cell_row = (np.arange(ncr * cr) // cr)[:, None]
-    cell_col = (np.arange(ncc * cc) // cc)[None, :]
-    cell = cell_row * ncc + cell_col  # (H', W')
-    idx = (np.arange(n)[:, None, None] * (ncr * ncc) + cell) * orientations + bins
-    hist = np.bincount(idx.ravel(), weights=magnitude.ravel(),
-                       minlength=n * ncr * ncc * orientations)
-    return hist.reshape(n, ncr, ncc, orientations) / (cr * cc)
+        keep = bins < orientations  # an angle rounded to 180 falls in no bin (skimage)
+        idx = (k[keep].astype(np.intp), r[keep].astype(np.intp) // cr, c[keep].astype(np.intp) // cc, bins[keep])
+        np.add.at(hist, idx, np.sqrt(g_row[keep] ** 2 + g_col[keep] ** 2))
+    return hist / (cr * cc)
 
 
 def hog_descriptors(images: np.ndarray, orientations: int = HOG_ORIENTATIONS,
@@ -157,10 +245,7 @@ def hog_descriptors(images: np.ndarray, orientations: int = HOG_ORIENTATIONS,
             f"and {cells_per_block} cell blocks; need at least "
             f"{br * pixels_per_cell[0]}x{bc * pixels_per_cell[1]} px"
         )
-    hist = np.empty((n, ncr, ncc, orientations), dtype=np.float64)
-    for start in range(0, n, BLOCK):  # blocks of patches keep the buffers in cache
-        stop = min(n, start + BLOCK)
-        hist[start:stop] = _cell_histograms(images[start:stop], orientations, pixels_per_cell)
+    hist = _cell_histograms(images, orientations, pixels_per_cell)
     # blocks[:, r, c, i, j, :] = hist[:, r + i, c + j, :]
     blocks = np.empty((n, nbr, nbc, br, bc, orientations), dtype=np.float64)
     for i in range(br):

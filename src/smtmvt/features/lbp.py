@@ -30,48 +30,83 @@ pixel count (fractions summing to 1 per cell).
 
 from __future__ import annotations
 
-import numpy as np
+import math
 
-__all__ = ["lbp_codes", "lbp_histograms", "lbp_view", "LBP_P", "LBP_R", "LBP_GRID", "BLOCK"]
+import numpy as np
+from numba import njit
+
+__all__ = ["lbp_codes", "lbp_histograms", "lbp_view", "LBP_P", "LBP_R", "LBP_GRID"]
 
 LBP_P = 8
 LBP_R = 1.0
 LBP_GRID = 4  # cells per side
 
 
-def _axis_plan(size: int, offset: float, pad: int):
-    """Neighbour positions along one axis for every pixel index ``0..size-1``.
+@njit(cache=True, nogil=True, boundscheck=False)
+def _lbp_kernel(images, rp, cp, pad, out):  # pragma: no cover - compiled (tested through lbp_codes)
+    """Uniform LBP codes of ``images (n, h, w)`` into ``out (n, h, w) uint8``.
 
-    Returns ``(lo, hi, frac)``: ``lo``/``hi`` index the padded axis (slices when
-    they are plain shifts of ``range(size)``, always the case for R = 1, else
-    index arrays); ``frac = (x + offset) - floor(x + offset)``, float64 ``(size,)``,
-    the interpolation weight computed as skimage computes it.
+    Row by row, so that every inner loop runs over the columns and vectorizes:
+    the patch is copied into a zero-padded float64 buffer (skimage's constant
+    mode, cval 0); neighbour ``i`` is interpolated for the whole row, then the
+    bits, their count and the 0/1 transitions are accumulated per column.
     """
-    pos = np.arange(size, dtype=np.float64) + offset
-    lo = np.floor(pos)
-    hi = np.ceil(pos)
-    frac = pos - lo
-    lo_i = lo.astype(np.intp) + pad
-    hi_i = hi.astype(np.intp) + pad
-
-    def as_index(ix):
-        if np.array_equal(ix, ix[0] + np.arange(size)):
-            return slice(int(ix[0]), int(ix[0]) + size)
-        return ix
-
-    return as_index(lo_i), as_index(hi_i), frac
-
-
-def _take(array: np.ndarray, index, axis: int) -> np.ndarray:
-    """``array`` indexed along ``axis`` by a slice (a view) or an index array."""
-    if isinstance(index, slice):
-        key = [slice(None)] * array.ndim
-        key[axis] = index
-        return array[tuple(key)]
-    return np.take(array, index, axis=axis)
-
-
-BLOCK = 64  # patches processed together; keeps the float64 work buffers cache-sized
+    n, h, w = images.shape
+    P = rp.shape[0]
+    buf = np.zeros((h + 2 * pad, w + 2 * pad))
+    value = np.empty((P, w))
+    ones = np.empty(w, np.uint8)
+    changes = np.empty(w, np.uint8)
+    prev = np.empty(w, np.bool_)
+    # Integer parts of the column offsets, and the interpolation weight of each
+    # column as skimage computes it: (c + cp) - floor(c + cp), exact per column.
+    # (floor(c + cp) == c + floor(cp): cp has 5 decimals, so c + cp never rounds
+    # across an integer.)
+    c_lo = np.empty(P, np.int64)
+    c_hi = np.empty(P, np.int64)
+    dcs = np.empty((P, w))
+    for i in range(P):
+        c_lo[i] = int(math.floor(cp[i])) + pad
+        c_hi[i] = int(math.ceil(cp[i])) + pad
+        for c in range(w):
+            x = c + cp[i]
+            dcs[i, c] = x - math.floor(x)
+    for k in range(n):
+        for r in range(h):
+            for c in range(w):
+                buf[r + pad, c + pad] = images[k, r, c]
+        for r in range(h):
+            for i in range(P):
+                y = r + rp[i]
+                dr = y - math.floor(y)
+                r_lo = int(math.floor(y)) + pad
+                r_hi = int(math.ceil(y)) + pad
+                o_lo = c_lo[i]
+                o_hi = c_hi[i]
+                if dr == 0.0 and o_lo == o_hi:
+                    # integer offset: skimage's formula returns the pixel exactly
+                    for c in range(w):
+                        value[i, c] = buf[r_lo, c + o_lo]
+                else:
+                    for c in range(w):
+                        dc = dcs[i, c]
+                        top = (1 - dc) * buf[r_lo, c + o_lo] + dc * buf[r_lo, c + o_hi]
+                        bottom = (1 - dc) * buf[r_hi, c + o_lo] + dc * buf[r_hi, c + o_hi]
+                        value[i, c] = (1 - dr) * top + dr * bottom
+            for c in range(w):
+                bit = value[0, c] >= buf[r + pad, c + pad]
+                ones[c] = bit
+                prev[c] = bit
+                changes[c] = 0
+            for i in range(1, P):
+                for c in range(w):
+                    bit = value[i, c] >= buf[r + pad, c + pad]
+                    ones[c] += bit
+                    changes[c] += bit != prev[c]
+                    prev[c] = bit
+            for c in range(w):
+                out[k, r, c] = ones[c] if changes[c] <= 2 else P + 1
+    return out
 
 
 def lbp_codes(images: np.ndarray, P: int = LBP_P, R: float = LBP_R) -> np.ndarray:
@@ -93,15 +128,13 @@ def lbp_codes(images: np.ndarray, P: int = LBP_P, R: float = LBP_R) -> np.ndarra
 
     Notes
     -----
-    The patches are processed in blocks of ``BLOCK`` (vectorized within a
-    block; the block loop only keeps the work buffers in cache, which makes
-    the whole call about 1.5x faster than one 400-patch pass). The horizontal
-    pass of the bilinear interpolation, ``(1 - dc) a + dc b``, is shared by the
-    neighbours with the same column offset (for P = 8 the pairs 1/7 and 3/5) by
-    computing it once for every padded row; the values are bit-identical to
-    evaluating skimage's formula neighbour by neighbour. ``value - centre >= 0``
-    is evaluated as ``value >= centre``, the same test for finite doubles (with
-    gradual underflow, ``a - b == 0`` only when ``a == b``).
+    A compiled (numba) loop, about 3x faster than the vectorized numpy version
+    it replaced (400 patches of 32x32: 6 ms against 17 ms of CPU time on the
+    2-core development machine). The bilinear interpolation is evaluated with
+    skimage's operations in skimage's order, in float64, so the values are
+    bit-identical; ``value - centre >= 0`` is evaluated as ``value >= centre``,
+    the same test for finite doubles (with gradual underflow, ``a - b == 0``
+    only when ``a == b``).
     """
     images = np.asarray(images)
     if images.ndim != 3:
@@ -109,60 +142,16 @@ def lbp_codes(images: np.ndarray, P: int = LBP_P, R: float = LBP_R) -> np.ndarra
     P = int(P)
     if not 1 <= P <= 32 or not R > 0:
         raise ValueError(f"need 1 <= P <= 32 and R > 0, got P={P}, R={R}")
-    n, h, w = images.shape
-    pad = int(np.ceil(R))  # |offsets| <= R, so floor/ceil of r + offset stay within the pad
     angles = 2 * np.pi * np.arange(P, dtype=np.double) / P
     rp = np.round(-R * np.sin(angles), 5)
     cp = np.round(R * np.cos(angles), 5)
-    plans = [(_axis_plan(h, rp[i], pad), _axis_plan(w, cp[i], pad)) for i in range(P)]
-    col_offsets = sorted({cp[i] for i in range(P)
-                          if plans[i][1][2].any() or not isinstance(plans[i][1][0], slice)})
-
-    b = min(n, BLOCK)
-    hp, wp = h + 2 * pad, w + 2 * pad
-    # Work buffers, allocated once and reused for every block.
-    padded = np.zeros((b, hp, wp), dtype=np.float64)  # zero border = skimage's cval 0
-    rows_by_offset = {c: np.empty((b, hp, w), dtype=np.float64) for c in col_offsets}
-    row_scratch = np.empty((b, hp, w), dtype=np.float64)
-    value = np.empty((b, h, w), dtype=np.float64)
-    scratch = np.empty((b, h, w), dtype=np.float64)
-    bits = np.empty((P, b, h, w), dtype=bool)
-    ones = np.empty((b, h, w), dtype=np.uint8)
-    changes = np.empty((b, h, w), dtype=np.uint8)
-    codes = np.empty((n, h, w), dtype=np.uint8)
-
-    for start in range(0, n, b):
-        m = min(b, n - start)
-        pb = padded[:m]
-        pb[:, pad:pad + h, pad:pad + w] = images[start:start + m]
-        image = pb[:, pad:pad + h, pad:pad + w]
-        for c in col_offsets:  # horizontal interpolation, shared per column offset
-            i = int(np.flatnonzero(cp == c)[0])
-            c_lo, c_hi, dc = plans[i][1]
-            dcb = dc[None, None, :]
-            out = rows_by_offset[c][:m]
-            np.multiply(_take(pb, c_lo, 2), 1 - dcb, out=out)
-            np.multiply(_take(pb, c_hi, 2), dcb, out=row_scratch[:m])
-            out += row_scratch[:m]
-        for i in range(P):
-            (r_lo, r_hi, dr), (c_lo, _, _) = plans[i]
-            rows = rows_by_offset[cp[i]][:m] if cp[i] in rows_by_offset else pb[:, :, c_lo]
-            if not dr.any() and isinstance(r_lo, slice):
-                # Integer row offset: (1 - 0) * a + 0 * a == a exactly.
-                np.greater_equal(rows[:, r_lo, :], image, out=bits[i, :m])
-                continue
-            drb = dr[None, :, None]
-            np.multiply(_take(rows, r_lo, 1), 1 - drb, out=value[:m])
-            np.multiply(_take(rows, r_hi, 1), drb, out=scratch[:m])
-            value[:m] += scratch[:m]
-            np.greater_equal(value[:m], image, out=bits[i, :m])
-        bm = bits[:, :m]
-        np.sum(bm, axis=0, dtype=np.uint8, out=ones[:m])
-        changes[:m] = 0
-        for i in range(P - 1):
-            changes[:m] += bm[i] != bm[i + 1]
-        codes[start:start + m] = np.where(changes[:m] <= 2, ones[:m], np.uint8(P + 1))
-    return codes
+    pad = int(np.ceil(R))  # |offsets| <= R, so floor/ceil of r + offset stay within the pad
+    out = np.empty(images.shape, dtype=np.uint8)
+    if images.size == 0:
+        return out
+    if images.dtype not in (np.float32, np.float64):
+        images = images.astype(np.float64)
+    return _lbp_kernel(np.ascontiguousarray(images), rp, cp, pad, out)
 
 
 def _cell_index(length: int, grid: int) -> np.ndarray:
@@ -206,18 +195,20 @@ def lbp_histograms(codes: np.ndarray, n_codes: int, grid: int = LBP_GRID) -> np.
     return hist.reshape(n, -1).astype(np.float32)
 
 
-def lbp_view(patches) -> np.ndarray:
+def lbp_view(patches, radius: float = LBP_R) -> np.ndarray:
     """LBP view on the Tan-Triggs gray patches.
 
     Parameters
     ----------
     patches : Patches
         Uses ``patches.gray``, ``(n, fh, fw)`` float32.
+    radius : float
+        Radius of the 8 neighbours, pixels of the feature patch (default 1).
 
     Returns
     -------
-    (n, 4 * 4 * 10) = (n, 160) float32 ndarray: uniform LBP (P = 8, R = 1,
-    codes 0..9) histograms over a 4x4 grid of cells.
+    (n, 4 * 4 * 10) = (n, 160) float32 ndarray: uniform LBP (P = 8, codes
+    0..9) histograms over a 4x4 grid of cells.
     """
-    codes = lbp_codes(patches.gray, LBP_P, LBP_R)
+    codes = lbp_codes(patches.gray, LBP_P, radius)
     return lbp_histograms(codes, LBP_P + 2, LBP_GRID)

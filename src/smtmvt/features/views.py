@@ -16,7 +16,7 @@ filled with the four default views at import and extended only through
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable, Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -181,7 +181,8 @@ def normalize_columns(V: np.ndarray) -> np.ndarray:
     return X.astype(np.float32)
 
 
-def extract_views(patches: Patches, names: Sequence[str] = DEFAULT_VIEWS) -> list[np.ndarray]:
+def extract_views(patches: Patches, names: Sequence[str] = DEFAULT_VIEWS,
+                  options: Mapping[str, Mapping] | None = None) -> list[np.ndarray]:
     """Feature matrices of the patches, one per view.
 
     Parameters
@@ -190,6 +191,8 @@ def extract_views(patches: Patches, names: Sequence[str] = DEFAULT_VIEWS) -> lis
         ``n`` candidate (or template) patches.
     names : sequence of str
         View names, from :func:`available_views`.
+    options : mapping of view name -> keyword arguments, optional
+        Passed to that view's function (e.g. ``{"color": {"grid": 4}}``).
 
     Returns
     -------
@@ -207,9 +210,10 @@ def extract_views(patches: Patches, names: Sequence[str] = DEFAULT_VIEWS) -> lis
         raise ValueError(
             f"unknown view(s) {unknown}; available views: {', '.join(available_views())}"
         )
+    options = options or {}
     out = []
     for name in names:
-        F = np.asarray(VIEW_REGISTRY[name](patches))
+        F = np.asarray(VIEW_REGISTRY[name](patches, **options.get(name, {})))
         if F.ndim != 2 or F.shape[0] != patches.n:
             raise ValueError(
                 f"view {name!r} returned shape {F.shape}, expected ({patches.n}, d)"
