@@ -38,14 +38,24 @@ Default method, ``"admm"`` (exact, provably convergent)
    ADMM converges for every rho > 0: residuals -> 0, objective -> optimum,
    iterates -> a minimizer (Boyd et al. 2011, sec. 3.2 and appendix A;
    Eckstein & Bertsekas 1992). rho is adapted by residual balancing (He, Yang &
-   Wang 2000) only during the first 200 iterations, at most 30 times; after that
-   rho is constant and the theorem applies from that point on. No step size is
+   Wang 2000) only during the first 200 iterations, at most 30 times (per
+   candidate); after that rho is constant and the theorem applies from that
+   point on. No step size is
    involved (the Lipschitz constant below is only needed by ``"paper"``).
 
-*Stopping rule* (Boyd et al. 2011, sec. 3.3): stop when both
-``r_pri <= tol * max(||A x||, sqrt(beta) ||(Z1, Z2)||, ||X||)`` and
-``r_dual <= tol * rho * max(||D'U_R||, beta ||U1||, beta ||U2||)``
-(plus an absolute floor of 1e-14; the primal scale omits ``||R||`` from
+*One ADMM per candidate.* The problem separates over candidates (every term
+is a sum over them), so each candidate i runs its own ADMM with its own
+penalty rho_i, balanced on its own residuals, and its own stopping test; its
+result is taken at the first iteration where it passes. A candidate's code
+therefore does not depend on which candidates are solved with it, which is
+what makes coding only some of them exact (:func:`smtmvt.likelihood.observe`).
+The iterations stay batched over the candidates still running.
+
+*Stopping rule* (Boyd et al. 2011, sec. 3.3; :mod:`smtmvt.solvers._admm_rules`),
+per candidate: stop when both
+``r_pri <= tol * max(||A x||, sqrt(beta) ||(Z1, Z2)||, ||x||) + 1e-14`` and
+``r_dual <= tol * rho * max(||D'U_R||, beta ||U1||, beta ||U2||) + 1e-14``
+(the norms of that candidate's columns; the primal scale omits ``||R||`` from
 Boyd's ``||B z||``, which changes it by at most a factor 2 since
 ``||R|| ~ ||X - DC|| <= ||X|| + ||A x||``), where ``r_pri = ||A x + B z - c||`` (the
 change of the scaled duals) and ``r_dual = rho ||A'B (z - z_prev)||`` (the
