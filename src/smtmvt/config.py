@@ -71,11 +71,13 @@ class TrackerConfig:
         Fraction of the intensity template flagged by E above which the frame
         is treated as occluded and no template is replaced (L1-APG: 0.25).
     prune_eps : float
-        Candidates whose likelihood bound is below ``prune_eps`` times the best
-        candidate's likelihood are not coded (bounded coding,
-        :func:`smtmvt.likelihood.observe`): the chosen box is the same as when
-        coding all of them; resampling weights change by a relative
-        ``n_particles * prune_eps`` at most. 0 codes every candidate.
+        Bounded coding (:func:`smtmvt.likelihood.observe`): the candidates left
+        uncoded have likelihood bounds summing to at most ``prune_eps`` times
+        the best candidate's likelihood. The chosen box is the same as when
+        coding all of them; the sum of the resampling weights changes by a
+        relative ``prune_eps`` at most. 0 codes every candidate. The tracker
+        uses ``min(prune_eps, 0.5 / n_particles)``, so that no skipped particle
+        would have been copied by the resampling.
     frame_size : (int, int) or None
         Track on frames resized to ``(width, height)`` pixels (the paper resized
         every frame to 320x240); boxes are mapped back to the input frame.
@@ -116,7 +118,7 @@ class TrackerConfig:
     solver_max_iter: int = 200
     update_angle: float = 60.0
     occlusion_fraction: float = 0.25
-    prune_eps: float = 1e-6
+    prune_eps: float = 1e-3
     frame_size: tuple | None = None
     antialias: float = 0.0
     texture_source: str = "tan_triggs"

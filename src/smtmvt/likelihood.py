@@ -9,24 +9,24 @@ Coding all n candidates with the exact solver is the most expensive stage of
 a frame, yet most candidates end with likelihoods many orders of magnitude
 below the best one and cannot change anything. Following L1-APG's bounded
 particle resampling (Mei et al., CVPR 2011), each candidate's likelihood is
-bounded from above by ``exp(-alpha b_i)``, ``b_i`` its least-squares residual
-(:func:`smtmvt.solvers.bounds.least_squares_residuals`, a lower bound on its
-residual under any model). The rule, with ``delta = ln(1 / eps) / alpha``:
+bounded from above by ``u_i = exp(-alpha b_i)``, ``b_i`` its least-squares
+residual (:func:`smtmvt.solvers.bounds.least_squares_residuals`, a lower bound
+on its residual under any model). The rule:
 
-1. code the valid candidates with ``b_i <= min_j b_j + delta`` (none of the
-   others can be within a factor ``eps`` of the best, whose residual is at
-   least ``min_j b_j``);
-2. with ``r*`` the best residual found, also code those with ``b_i <= r* + delta``
-   not coded yet.
+1. code the ``FIRST_PASS`` (16) valid candidates of smallest bound; let
+   ``p*`` be the best likelihood found;
+2. leave out the candidates of largest bound whose bounds sum to at most
+   ``eps * p*`` (``sum_{i skipped} u_i <= eps p*``), and code all the others.
 
-Every candidate left out then has ``p_i <= eps * p*``. So the chosen (best)
-candidate is the one that coding all of them would choose, and its code is
-the same: the SMTMVT solver runs one independent ADMM per candidate, whose
-result does not depend on the other candidates in the batch. The skipped
-candidates get likelihood 0: with ``eps < 1 / n`` each of them would have been
-resampled ``floor(n p_i / sum p) = 0`` times anyway, and the sum of the
-weights changes by a relative ``n * eps`` at most (4e-4 at the defaults), so
-resampling is the same except where that changes the rounding of a count.
+Every candidate left out then has ``p_i <= u_i <= eps * p*``: the chosen
+(best) candidate is the one that coding all of them would choose, and its code
+is the same (the SMTMVT solver runs one independent ADMM per candidate, whose
+result does not depend on the other candidates in the batch). The skipped
+candidates get likelihood 0. With ``eps < 1 / n`` each of them would have been
+resampled ``floor(n p_i / sum_j p_j) = 0`` times anyway, and the sum of all
+weights changes by a relative ``eps`` at most (1e-3 at the default), so
+resampling copies every particle the same number of times except where that
+relative change moves ``n p_j / sum`` across an integer.
 """
 
 from __future__ import annotations
@@ -40,7 +40,10 @@ import numpy as np
 from .solvers.bounds import least_squares_residuals
 from .solvers.smtmvt import reconstruction_residual
 
-__all__ = ["likelihoods", "Observation", "observe"]
+__all__ = ["likelihoods", "Observation", "observe", "FIRST_PASS"]
+
+#: Candidates coded first (smallest bounds) to find the best likelihood.
+FIRST_PASS = 16
 
 
 def likelihoods(residual, alpha: float, valid=None) -> np.ndarray:
@@ -94,8 +97,9 @@ def observe(X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-6,
     alpha : likelihood sharpness.
     valid : (n,) bool, candidates that may be chosen (others get likelihood 0
         and are not coded); all when None.
-    eps : relative likelihood below which a candidate is not coded (see the
-        module docstring); 0 codes every valid candidate.
+    eps : the skipped candidates' likelihood bounds sum to at most ``eps``
+        times the best likelihood (see the module docstring); 0 codes every
+        valid candidate.
     always : (n,) bool, candidates coded whatever their bound, e.g. probes
         scored for diagnosis; their likelihood is reported (valid or not) but
         they take no part in the rule (pass them with ``valid`` False so that
@@ -125,9 +129,16 @@ def observe(X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-6,
     if eps <= 0 or not valid.any():
         run(valid | always)
     else:
-        delta = math.log(1.0 / eps) / alpha
-        run((valid & (bound <= bound[valid].min() + delta)) | always)
+        order = np.flatnonzero(valid)[np.argsort(bound[valid], kind="stable")]
+        first = np.zeros(n, dtype=bool)
+        first[order[:FIRST_PASS]] = True
+        run(first | always)
         best = np.nanmin(np.where(valid & coded, residual, np.nan))
-        run(valid & ~coded & (bound <= best + delta))
+        # bounds relative to the best likelihood: u_i / p* = exp(-alpha (b_i - r*))
+        rest = order[~coded[order]]
+        if rest.size:
+            u = np.exp(-alpha * (bound[rest] - best))
+            skipped_mass = np.cumsum(u[::-1])[::-1]  # sum of the bounds from each position to the end
+            run(np.isin(np.arange(n), rest[skipped_mass > eps]))
     p = likelihoods(residual, alpha, valid | always)
     return Observation(likelihood=p, residual=residual, bound=bound, coded=coded, C=C, E=E)

@@ -275,7 +275,7 @@ class Tracker:
         is_probe = np.arange(len(states)) >= n
         with self._timed("solve"):
             obs = observe(X, self._templates.dictionaries, self._code, cfg.alpha,
-                          valid=valid & ~is_probe, eps=cfg.prune_eps, always=is_probe)
+                          valid=valid & ~is_probe, eps=min(cfg.prune_eps, 0.5 / n), always=is_probe)
         p = obs.likelihood[:n]
 
         if not np.any(p > 0):
