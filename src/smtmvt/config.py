@@ -42,6 +42,10 @@ class TrackerConfig:
         Girl, Jumping, CarDark) with ``update_angle`` 60: translation 8 gave a
         mean overlap of 0.710, translation 6 gave 0.528 (Subway and Jumping,
         with fast motion, were lost).
+    velocity : float
+        Constant-velocity term of the motion model: every particle is first
+        moved by ``velocity`` times the last frame's displacement of the
+        chosen box (0: a pure random walk, as L1-APG and MTT).
     feature_size : (int, int)
         Height, width (pixels) to which each candidate is warped for the HOG,
         LBP and color views.
@@ -82,6 +86,14 @@ class TrackerConfig:
         Track on frames resized to ``(width, height)`` pixels (the paper resized
         every frame to 320x240); boxes are mapped back to the input frame.
         None: track at the input size.
+    scale_normalize : bool
+        Each frame, compute the planes (Tan-Triggs, gray, color) on the frame
+        resized so that the target has its initial size in pixels (the
+        factor is the initial over the current target scale, within [1/4, 4]).
+        Tan-Triggs is a band-pass filter of fixed size in pixels, so without
+        this a grown target's views drift away from its first templates,
+        and a box smaller than the target matches them better (the demo's
+        scale change). False: the planes of the working frame itself.
     antialias : float
         Smooth each plane before sampling it on the patch grids, by a Gaussian
         of ``antialias`` times the sampling step (target size over patch size,
@@ -111,6 +123,7 @@ class TrackerConfig:
     n_templates: int = 10
     views: tuple = ("intensity", "color", "hog", "lbp")
     affine_std: tuple = (0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0)
+    velocity: float = 0.0
     feature_size: tuple = (32, 32)
     model: str = "smtmvt"
     solver: str = "admm"
@@ -120,6 +133,7 @@ class TrackerConfig:
     occlusion_fraction: float = 0.25
     prune_eps: float = 1e-3
     frame_size: tuple | None = None
+    scale_normalize: bool = False
     antialias: float = 0.0
     texture_source: str = "tan_triggs"
     color_grid: int = 1
@@ -146,6 +160,7 @@ class TrackerConfig:
             "texture_source": self.texture_source in ("tan_triggs", "gray"),
             "color_grid": int(self.color_grid) >= 1,
             "lbp_radius": self.lbp_radius > 0,
+            "velocity": 0 <= self.velocity <= 1,
         }
         for name, ok in checks.items():
             if not ok:
@@ -173,9 +188,9 @@ class TrackerConfig:
         base = dict(
             lam=0.1, gamma=0.25, alpha=30.0, n_particles=400, n_templates=10,
             views=("intensity", "color", "hog", "lbp"),
-            affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0), feature_size=(32, 32),
+            affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0), velocity=0.0, feature_size=(32, 32),
             model="smtmvt", solver="admm", solver_tol=1e-3, solver_max_iter=200,
-            update_angle=60.0, occlusion_fraction=0.25, frame_size=(320, 240), antialias=0.0,
+            update_angle=60.0, occlusion_fraction=0.25, frame_size=(320, 240), scale_normalize=False, antialias=0.0,
             texture_source="tan_triggs", color_grid=1, lbp_radius=1.0,
         )
         base.update(changes)

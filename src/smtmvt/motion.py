@@ -19,7 +19,7 @@ from .geometry import affine_scale
 __all__ = ["propagate", "resample"]
 
 
-def propagate(params, std, rng: np.random.Generator) -> np.ndarray:
+def propagate(params, std, rng: np.random.Generator, shift=None) -> np.ndarray:
     """One step of the random walk.
 
     Parameters
@@ -27,12 +27,16 @@ def propagate(params, std, rng: np.random.Generator) -> np.ndarray:
     params : (n, 6) affine states.
     std : (6,) relative standard deviations ``[a11, a12, a21, a22, tx, ty]``.
     rng : numpy Generator (the tracker's seeded generator).
+    shift : optional (2,) translation ``(dx, dy)`` pixels added to every
+        particle before the noise (a constant-velocity prediction).
 
     Returns
     -------
     (n, 6) float64 new states.
     """
     p = np.array(params, dtype=np.float64, copy=True, ndmin=2)
+    if shift is not None:
+        p[:, 4:] += np.asarray(shift, dtype=np.float64)
     s = np.asarray(std, dtype=np.float64)
     sc = affine_scale(p)[:, None]
     noise = rng.standard_normal(p.shape)

@@ -31,13 +31,13 @@ from threadpoolctl import ThreadpoolController
 
 from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
-from .geometry import affine_to_box, box_inside_fraction, box_to_affine
+from .geometry import affine_scale, affine_to_box, box_inside_fraction, box_to_affine
 from .likelihood import Observation, observe
 from .motion import propagate, resample
 from .preprocess import PreparedFrame, prepare_frame, resize_frame, smooth, to_unit_range
 from .solvers import SOLVERS, solve_smtmvt
 from .templates import TemplateSet
-from .warp import inside_fraction, remap_patches, sampling_grid, warp_patches
+from .warp import inside_fraction, remap_patches, sampling_grid
 
 __all__ = ["Tracker", "TrackResult", "FrameDetail", "track_frames"]
 
@@ -133,24 +133,35 @@ class Tracker:
         finally:
             self.timings[stage] += time.perf_counter() - t0
 
-    def _views(self, frame: PreparedFrame, params: np.ndarray) -> list:
+    def _views(self, frame: PreparedFrame, params: np.ndarray, plane_scale: float = 1.0) -> list:
         """Candidate views ``[(d_k, m) float32]`` of the states ``params (m, 6)``.
 
+        ``frame``'s planes may be the working frame resized by ``plane_scale``
+        (plane pixels per working-frame pixel, see ``config.scale_normalize``):
+        the sampling grids are mapped onto them (pixel edges to pixel edges).
         With ``config.antialias`` > 0 each plane is first smoothed by a Gaussian
         of ``antialias`` times the sampling step of the current target (its
-        size over the patch size, pixels per patch pixel), so that sampling it
-        on the patch grid does not alias.
+        size on the plane over the patch size), so that sampling it on the
+        patch grid does not alias.
         """
         cfg = self.config
         fs = cfg.feature_size
         texture = frame.normalized if cfg.texture_source == "tan_triggs" else frame.gray
-        w, h = self._work_box[2], self._work_box[3]
+        w, h = self._work_box[2] * plane_scale, self._work_box[3] * plane_scale
         step_i = max(w / self._intensity_size[1], h / self._intensity_size[0])
         step_f = max(w / fs[1], h / fs[0])
+
+        def grid(size):
+            X, Y = sampling_grid(params, size)
+            if plane_scale != 1.0:
+                X = (X + np.float32(0.5)) * np.float32(plane_scale) - np.float32(0.5)
+                Y = (Y + np.float32(0.5)) * np.float32(plane_scale) - np.float32(0.5)
+            return X, Y
+
         with self._timed("warp"):
-            X, Y = sampling_grid(params, fs)
+            X, Y = grid(fs)
             patches = Patches(
-                intensity=warp_patches(smooth(frame.normalized, cfg.antialias * step_i), params, self._intensity_size),
+                intensity=remap_patches(smooth(frame.normalized, cfg.antialias * step_i), *grid(self._intensity_size)),
                 gray=remap_patches(smooth(texture, cfg.antialias * step_f), X, Y),
                 color=remap_patches(smooth(frame.color, cfg.antialias * step_f), X, Y).reshape(
                     len(params), fs[0], fs[1], -1),
@@ -220,6 +231,8 @@ class Tracker:
         self._view_options = {"color": {"grid": cfg.color_grid}, "lbp": {"radius": cfg.lbp_radius}}
         self._rng = np.random.default_rng(cfg.seed)
         self._state = box_to_affine(wb)
+        self._init_state = self._state.copy()
+        self._velocity = np.zeros(2)
         self._work_box = tuple(float(v) for v in wb)
         self._box = tuple(float(v) for v in b)
         t_states = self._template_states(self._state)
@@ -231,10 +244,23 @@ class Tracker:
         self._initialized = True
 
     # -- the working frame (config.frame_size) ------------------------------
-    def _prepare(self, frame, where: str, channels):
-        if self.config.frame_size is not None:
-            frame = resize_frame(to_unit_range(frame, where), self.config.frame_size)
+    def _prepare(self, frame, where: str, channels, plane_scale: float = 1.0):
+        """The frame's planes at ``plane_scale`` times the working frame's size."""
+        size = self.config.frame_size
+        if size is not None or plane_scale != 1.0:
+            f = to_unit_range(frame, where)
+            if size is None:
+                size = (f.shape[1], f.shape[0])
+            size = (max(2, int(round(size[0] * plane_scale))), max(2, int(round(size[1] * plane_scale))))
+            frame = resize_frame(f, size)
         return prepare_frame(frame, where, channels)
+
+    def _plane_scale(self) -> float:
+        """Plane pixels per working pixel for the next frame (``config.scale_normalize``)."""
+        if not self.config.scale_normalize:
+            return 1.0
+        s = float(affine_scale(self._init_state)[0] / affine_scale(self._state)[0])
+        return float(np.clip(s, 0.25, 4.0))
 
     def _to_work(self, boxes) -> np.ndarray:
         """0-based boxes of the input frame -> of the working frame."""
@@ -262,16 +288,19 @@ class Tracker:
         cfg = self.config
         self._frame_index += 1
         with self._timed("preprocess"):
-            prepared = self._prepare(frame, f"frame {self._frame_index}", self._channels)
+            plane_scale = self._plane_scale()
+            prepared = self._prepare(frame, f"frame {self._frame_index}", self._channels, plane_scale)
+            work_shape = (int(round(prepared.shape[0] / plane_scale)), int(round(prepared.shape[1] / plane_scale)))
 
         particles = resample(self._particles, self._weights, cfg.n_particles)
-        particles = propagate(particles, cfg.affine_std, self._rng)
+        shift = cfg.velocity * self._velocity if cfg.velocity else None
+        particles = propagate(particles, cfg.affine_std, self._rng, shift)
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
-        X = self._views(prepared, states)
+        X = self._views(prepared, states, plane_scale)
         # A candidate mostly outside the image is not a valid observation.
-        valid = inside_fraction(states, prepared.shape) >= 0.5
+        valid = inside_fraction(states, work_shape) >= 0.5
         is_probe = np.arange(len(states)) >= n
         with self._timed("solve"):
             obs = observe(X, self._templates.dictionaries, self._code, cfg.alpha,
@@ -292,6 +321,7 @@ class Tracker:
                 update_angle=cfg.update_angle, occlusion_fraction=cfg.occlusion_fraction,
                 intensity_view=self._intensity_index,
             )
+        self._velocity = particles[best, 4:] - self._state[4:]
         self._state = particles[best].copy()
         self._work_box = tuple(float(v) for v in affine_to_box(self._state))
         self._box = tuple(float(v) for v in self._from_work(self._work_box))
