@@ -32,6 +32,7 @@ relative change moves ``n p_j / sum`` across an integer.
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Callable
 
@@ -85,8 +86,13 @@ class Observation:
     E: list
 
 
-def observe(X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-6,
-            always=None) -> Observation:
+@contextmanager
+def _untimed(stage: str):
+    yield
+
+
+def observe(X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-3,
+            always=None, timed=None) -> Observation:
     """Code the candidates that can matter and compute their likelihoods.
 
     Parameters
@@ -104,12 +110,17 @@ def observe(X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-6,
         scored for diagnosis; their likelihood is reported (valid or not) but
         they take no part in the rule (pass them with ``valid`` False so that
         they cannot change which other candidates are coded).
+    timed : optional ``timed(stage)`` context manager factory; the solver's
+        time is reported as ``"solve"``, the rest (bounds, residuals,
+        likelihoods) as ``"likelihood"``.
     """
+    timed = timed or _untimed
     n = X[0].shape[1]
     K, N = len(D), D[0].shape[1]
     valid = np.ones(n, dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
     always = np.zeros(n, dtype=bool) if always is None else np.asarray(always, dtype=bool)
-    bound = least_squares_residuals(X, D)
+    with timed("likelihood"):
+        bound = least_squares_residuals(X, D)
     coded = np.zeros(n, dtype=bool)
     C = np.zeros((K, N, n))
     E = [np.zeros((Xk.shape[0], n)) for Xk in X]
@@ -119,12 +130,15 @@ def observe(X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-6,
         idx = np.flatnonzero(mask)
         if idx.size == 0:
             return
-        Cs, Es = code([Xk[:, idx] for Xk in X], D)
-        C[:, :, idx] = Cs
-        for k in range(K):
-            E[k][:, idx] = Es[k]
-        residual[idx] = reconstruction_residual([Xk[:, idx] for Xk in X], D, Cs)
-        coded[idx] = True
+        Xs = [Xk[:, idx] for Xk in X]
+        with timed("solve"):
+            Cs, Es = code(Xs, D)
+        with timed("likelihood"):
+            C[:, :, idx] = Cs
+            for k in range(K):
+                E[k][:, idx] = Es[k]
+            residual[idx] = reconstruction_residual(Xs, D, Cs)
+            coded[idx] = True
 
     if eps <= 0 or not valid.any():
         run(valid | always)
@@ -140,5 +154,6 @@ def observe(X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-6,
             u = np.exp(-alpha * (bound[rest] - best))
             skipped_mass = np.cumsum(u[::-1])[::-1]  # sum of the bounds from each position to the end
             run(np.isin(np.arange(n), rest[skipped_mass > eps]))
-    p = likelihoods(residual, alpha, valid | always)
+    with timed("likelihood"):
+        p = likelihoods(residual, alpha, valid | always)
     return Observation(likelihood=p, residual=residual, bound=bound, coded=coded, C=C, E=E)

@@ -292,19 +292,21 @@ class Tracker:
             prepared = self._prepare(frame, f"frame {self._frame_index}", self._channels, plane_scale)
             work_shape = (int(round(prepared.shape[0] / plane_scale)), int(round(prepared.shape[1] / plane_scale)))
 
-        particles = resample(self._particles, self._weights, cfg.n_particles)
-        shift = cfg.velocity * self._velocity if cfg.velocity else None
-        particles = propagate(particles, cfg.affine_std, self._rng, shift)
+        with self._timed("motion"):
+            particles = resample(self._particles, self._weights, cfg.n_particles)
+            shift = cfg.velocity * self._velocity if cfg.velocity else None
+            particles = propagate(particles, cfg.affine_std, self._rng, shift)
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
         X = self._views(prepared, states, plane_scale)
         # A candidate mostly outside the image is not a valid observation.
-        valid = inside_fraction(states, work_shape) >= 0.5
+        with self._timed("motion"):
+            valid = inside_fraction(states, work_shape) >= 0.5
         is_probe = np.arange(len(states)) >= n
-        with self._timed("solve"):
-            obs = observe(X, self._templates.dictionaries, self._code, cfg.alpha,
-                          valid=valid & ~is_probe, eps=min(cfg.prune_eps, 0.5 / n), always=is_probe)
+        obs = observe(X, self._templates.dictionaries, self._code, cfg.alpha,
+                      valid=valid & ~is_probe, eps=min(cfg.prune_eps, 0.5 / n), always=is_probe,
+                      timed=self._timed)
         p = obs.likelihood[:n]
 
         if not np.any(p > 0):

@@ -1,0 +1,93 @@
+"""SMTMVT against OpenCV's CSRT: frames per second on the same frames, one thread each.
+
+Usage::
+
+    OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 python bench/speed.py --sequence DIR [--frames N] [--rounds R]
+
+Loads the frames first (no I/O in the timing), then tracks them with ``smtmvt``
+(the default :class:`smtmvt.TrackerConfig`) and with ``opencv-csrt`` (OpenCV's
+defaults, driven by the evaluation's adapter), alternately for ``--rounds``
+rounds, with BLAS and OpenCV limited to one thread. Prints smtmvt's
+milliseconds per frame for each stage (warp, features, solve, likelihood,
+update, other), the fps of both (median over the rounds) and, as its last
+line, ``ratio_vs_csrt=<fps_smtmvt / fps_csrt>``. The first init of each
+tracker (numba compilation, OpenCV set-up) is done before timing.
+Nothing is asserted: speed is measured here, never in tests.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+import cv2
+import numpy as np
+from threadpoolctl import threadpool_limits
+
+from smtmvt import Tracker, TrackerConfig, open_sequence
+from smtmvt.evaluation.trackers import make_tracker
+
+STAGES = ("preprocess", "motion", "warp", "features", "solve", "likelihood", "update")
+
+
+def run_smtmvt(frames, box):
+    tracker = Tracker(TrackerConfig(seed=0))
+    t0 = time.perf_counter()
+    tracker.init(frames[0], box)
+    tracker.timings.clear()
+    for f in frames[1:]:
+        tracker.update(f)
+    total = time.perf_counter() - t0
+    return total, dict(tracker.timings)
+
+
+def run_csrt(frames, box):
+    tracker = make_tracker("opencv-csrt", seed=0)
+    t0 = time.perf_counter()
+    tracker.init(frames[0], box)
+    for f in frames[1:]:
+        tracker.update(f)
+    return time.perf_counter() - t0
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    default = Path(__file__).resolve().parents[1] / ".." / "shared" / "data" / "otb" / "Crossing"
+    ap.add_argument("--sequence", default=str(default))
+    ap.add_argument("--frames", type=int, default=120)
+    ap.add_argument("--rounds", type=int, default=3)
+    args = ap.parse_args()
+    cv2.setNumThreads(1)
+    seq = open_sequence(args.sequence)
+    n = min(args.frames, len(seq))
+    frames = [seq[i] for i in range(n)]
+    box = seq.first_box
+    with threadpool_limits(limits=1):
+        run_smtmvt(frames[:3], box)  # compile the numba kernels, warm the caches
+        run_csrt(frames[:3], box)
+        ours, theirs, stages = [], [], []
+        for _ in range(args.rounds):
+            total, timings = run_smtmvt(frames, box)
+            ours.append(total)
+            stages.append(timings)
+            theirs.append(run_csrt(frames, box))
+    updates = n - 1
+    best = int(np.argsort(ours)[len(ours) // 2])  # the median round's stage split
+    print(f"sequence {seq.name}: {n} frames {frames[0].shape}, {args.rounds} rounds, one thread")
+    print("smtmvt ms/frame by stage (median round):")
+    accounted = 0.0
+    for stage in STAGES:
+        ms = 1000 * stages[best].get(stage, 0.0) / updates
+        accounted += ms
+        print(f"  {stage:<11s} {ms:8.2f}")
+    print(f"  {'other':<11s} {1000 * ours[best] / updates - accounted:8.2f}  (init, bookkeeping)")
+    fps_ours = n / float(np.median(ours))
+    fps_csrt = n / float(np.median(theirs))
+    print(f"fps smtmvt {fps_ours:.2f}  (rounds: {', '.join(f'{n / t:.1f}' for t in ours)})")
+    print(f"fps opencv-csrt {fps_csrt:.2f}  (rounds: {', '.join(f'{n / t:.1f}' for t in theirs)})")
+    print(f"ratio_vs_csrt={fps_ours / fps_csrt:.3f}")
+
+
+if __name__ == "__main__":
+    main()
