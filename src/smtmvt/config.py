@@ -42,6 +42,10 @@ class TrackerConfig:
         Girl, Jumping, CarDark) with ``update_angle`` 60: translation 8 gave a
         mean overlap of 0.710, translation 6 gave 0.528 (Subway and Jumping,
         with fast motion, were lost).
+    estimate : str
+        The state reported each frame: ``"best"``, the particle of highest
+        likelihood (the paper), or ``"mean"``, the likelihood-weighted mean of
+        the particles' affine parameters (less noisy in scale and aspect).
     velocity : float
         Constant-velocity term of the motion model: every particle is first
         moved by ``velocity`` times the last frame's displacement of the
@@ -123,6 +127,7 @@ class TrackerConfig:
     n_templates: int = 10
     views: tuple = ("intensity", "color", "hog", "lbp")
     affine_std: tuple = (0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0)
+    estimate: str = "best"
     velocity: float = 0.0
     feature_size: tuple = (32, 32)
     model: str = "smtmvt"
@@ -161,6 +166,7 @@ class TrackerConfig:
             "color_grid": int(self.color_grid) >= 1,
             "lbp_radius": self.lbp_radius > 0,
             "velocity": 0 <= self.velocity <= 1,
+            "estimate": self.estimate in ("best", "mean"),
         }
         for name, ok in checks.items():
             if not ok:
@@ -188,7 +194,7 @@ class TrackerConfig:
         base = dict(
             lam=0.1, gamma=0.25, alpha=30.0, n_particles=400, n_templates=10,
             views=("intensity", "color", "hog", "lbp"),
-            affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0), velocity=0.0, feature_size=(32, 32),
+            affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0), estimate="best", velocity=0.0, feature_size=(32, 32),
             model="smtmvt", solver="admm", solver_tol=1e-3, solver_max_iter=200,
             update_angle=60.0, occlusion_fraction=0.25, frame_size=(320, 240), scale_normalize=False, antialias=0.0,
             texture_source="tan_triggs", color_grid=1, lbp_radius=1.0,

@@ -323,8 +323,13 @@ class Tracker:
                 update_angle=cfg.update_angle, occlusion_fraction=cfg.occlusion_fraction,
                 intensity_view=self._intensity_index,
             )
-        self._velocity = particles[best, 4:] - self._state[4:]
-        self._state = particles[best].copy()
+        if cfg.estimate == "mean":
+            w = p / p.sum()
+            state = w @ particles
+        else:
+            state = particles[best].copy()
+        self._velocity = state[4:] - self._state[4:]
+        self._state = state
         self._work_box = tuple(float(v) for v in affine_to_box(self._state))
         self._box = tuple(float(v) for v in self._from_work(self._work_box))
         self._particles, self._weights = particles, p
