@@ -75,6 +75,11 @@ class TrackerConfig:
         frame and drifted. Mean overlap on the six sequences above: 30 -> 0.47,
         45 -> 0.50, 60 -> 0.61, never updating -> 0.60 (all with translation
         std 4).
+    anchor_cos : float
+        Drift check of the template update: the best candidate replaces a
+        template only when its mean cosine over the views with the first
+        template (the exact initial target) is at least ``anchor_cos``; -1
+        disables the check (the paper, L1T).
     occlusion_fraction : float
         Fraction of the intensity template flagged by E above which the frame
         is treated as occluded and no template is replaced (L1-APG: 0.25).
@@ -136,6 +141,7 @@ class TrackerConfig:
     solver_max_iter: int = 200
     update_angle: float = 60.0
     occlusion_fraction: float = 0.25
+    anchor_cos: float = -1.0
     prune_eps: float = 1e-3
     frame_size: tuple | None = None
     scale_normalize: bool = False
@@ -196,7 +202,7 @@ class TrackerConfig:
             views=("intensity", "color", "hog", "lbp"),
             affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0), estimate="best", velocity=0.0, feature_size=(32, 32),
             model="smtmvt", solver="admm", solver_tol=1e-3, solver_max_iter=200,
-            update_angle=60.0, occlusion_fraction=0.25, frame_size=(320, 240), scale_normalize=False, antialias=0.0,
+            update_angle=60.0, occlusion_fraction=0.25, anchor_cos=-1.0, frame_size=(320, 240), scale_normalize=False, antialias=0.0,
             texture_source="tan_triggs", color_grid=1, lbp_radius=1.0,
         )
         base.update(changes)

@@ -72,7 +72,7 @@ class TemplateSet:
         return self.dictionaries[0].shape[1]
 
     def update(self, x, c, e, *, update_angle: float, occlusion_fraction: float,
-               intensity_view: int | None = 0) -> UpdateDecision:
+               intensity_view: int | None = 0, anchor_cos: float = -1.0) -> UpdateDecision:
         """Apply the rule of the module docstring for the frame's best candidate.
 
         Parameters
@@ -83,6 +83,9 @@ class TemplateSet:
         update_angle : degrees.
         occlusion_fraction : fraction in [0, 1].
         intensity_view : index of the intensity view in the lists, or None.
+        anchor_cos : drift check against the first template: a template is
+            replaced only when the mean over the views of the cosine between
+            the candidate and template 0 is at least ``anchor_cos`` (-1: no check).
         """
         c = np.asarray(c, dtype=np.float64)
         mean_c = c.mean(axis=0)
@@ -104,7 +107,10 @@ class TemplateSet:
         if occluded:
             self.cooldown = 5
         replaced = None
-        if self.cooldown == 0 and angle > update_angle and self.size > 1:
+        anchored = True
+        if anchor_cos > -1.0:
+            anchored = np.mean([float(np.dot(xk, Dk[:, 0])) for xk, Dk in zip(x, self.dictionaries)]) >= anchor_cos
+        if self.cooldown == 0 and angle > update_angle and self.size > 1 and anchored:
             j = 1 + int(np.argmin(self.weights[1:]))
             for xk, Dk in zip(x, self.dictionaries):
                 Dk[:, j] = xk

@@ -321,7 +321,7 @@ class Tracker:
             decision = self._templates.update(
                 [Xk[:, best] for Xk in X], obs.C[:, :, best], [Ek[:, best] for Ek in obs.E],
                 update_angle=cfg.update_angle, occlusion_fraction=cfg.occlusion_fraction,
-                intensity_view=self._intensity_index,
+                intensity_view=self._intensity_index, anchor_cos=cfg.anchor_cos,
             )
         if cfg.estimate == "mean":
             w = p / p.sum()
