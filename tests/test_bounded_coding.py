@@ -129,3 +129,17 @@ def test_frame_size_tracks_in_the_working_frame_and_maps_boxes_back(demo):
     small = run(frames, box, cfg)
     scaled = run(big, 2 * box, cfg.replace(frame_size=(W, H)))
     np.testing.assert_allclose(scaled, 2 * small, rtol=1e-12)
+
+
+def test_mean_estimate_is_the_likelihood_weighted_mean_state(demo):
+    from smtmvt.geometry import affine_to_box
+
+    # a flat likelihood (small alpha), so that the mean is not just the best particle
+    t = Tracker(TrackerConfig(n_particles=80, seed=5, estimate="mean", alpha=1.0))
+    t.init(demo.frames[0], demo.groundtruth[0])
+    for f in demo.frames[1:4]:
+        r, d = t.update_detailed(f)
+        p = d.observation.likelihood[: len(d.particles)]
+        mean_state = (p / p.sum()) @ d.particles
+        np.testing.assert_allclose(r.box, affine_to_box(mean_state), rtol=1e-12)
+        assert np.abs(np.asarray(r.box) - d.boxes[d.best]).max() > 0.01  # not the best particle

@@ -42,3 +42,12 @@ def test_resample_all_zero_or_nan_weights_collapse_to_one_particle():
     p = np.arange(3 * 6, dtype=float).reshape(3, 6)
     out = resample(p, [0.0, np.nan, 0.0], 5)
     assert out.shape == (5, 6) and np.all(out == out[0])
+
+
+def test_propagate_shift_moves_every_particle_before_the_noise():
+    p0 = np.repeat(box_to_affine((5, 5, 20, 20))[None], 7, axis=0)
+    rng_a, rng_b = np.random.default_rng(4), np.random.default_rng(4)
+    moved = propagate(p0, (0.01, 0, 0, 0.01, 4, 4), rng_a, shift=(3.0, -2.0))
+    still = propagate(p0, (0.01, 0, 0, 0.01, 4, 4), rng_b)
+    np.testing.assert_allclose(moved[:, 4:] - still[:, 4:], np.tile([3.0, -2.0], (7, 1)), atol=1e-12)
+    np.testing.assert_array_equal(moved[:, :4], still[:, :4])

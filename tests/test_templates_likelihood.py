@@ -63,3 +63,16 @@ def test_occlusion_suspends_updates_for_five_frames():
     for _ in range(4):
         assert ts.update([far, far], c, clean, update_angle=30, occlusion_fraction=0.25).replaced is None
     assert ts.update([far, far], c, clean, update_angle=30, occlusion_fraction=0.25).replaced is not None
+
+
+def test_anchor_check_blocks_a_replacement_far_from_the_first_template():
+    far = _unit(np.r_[1.0, -1.0, 1.0, -1.0, 1.0, -1.0]).astype(np.float32)
+    c = np.zeros((2, 4)); c[:, 1] = 0.2
+    e = [np.zeros(6), np.zeros(6)]
+    ts = _templates()
+    cos0 = float(np.dot(far, ts.dictionaries[0][:, 0]))
+    blocked = ts.update([far, far], c, e, update_angle=30, occlusion_fraction=0.25, anchor_cos=cos0 + 0.01)
+    assert blocked.angle > 30 and blocked.replaced is None
+    ts = _templates()
+    allowed = ts.update([far, far], c, e, update_angle=30, occlusion_fraction=0.25, anchor_cos=cos0 - 0.01)
+    assert allowed.replaced is not None
