@@ -22,7 +22,7 @@ from smtmvt.features import (
 )
 from smtmvt.features import views as views_module
 from smtmvt.features.color import color_histograms, color_view
-from smtmvt.features.hog import hog_descriptors, hog_dim, orientation_bins
+from smtmvt.features.hog import hog_descriptors, hog_dim, hog_view, orientation_bins
 from smtmvt.features.lbp import lbp_codes, lbp_histograms, lbp_view
 from smtmvt.features.tan_triggs import difference_of_gaussians
 
@@ -166,6 +166,19 @@ def test_lbp_histograms_equal_ones_from_skimage_codes(gray_patches, grid):
     ours = lbp_histograms(lbp_codes(gray_patches), 10, grid)
     assert ours.shape == (n, grid * grid * 10)
     assert_allclose(ours, ref.reshape(n, -1), rtol=0, atol=1e-7)
+
+
+def test_hog_and_lbp_views_on_the_raw_gray_plane(gray_patches):
+    tt, raw = gray_patches[:40], gray_patches[40:80]
+    patches = Patches(tt[:, :20, :20], tt, np.zeros(tt.shape + (3,), np.float32), raw=raw)
+    assert_array_equal(hog_view(patches, plane="gray"), hog_descriptors(raw))
+    assert_array_equal(hog_view(patches), hog_descriptors(tt))
+    assert_array_equal(lbp_view(patches, plane="gray"), lbp_histograms(lbp_codes(raw), 10, 4))
+    no_raw = Patches(tt[:, :20, :20], tt, np.zeros(tt.shape + (3,), np.float32))
+    with pytest.raises(ValueError, match="raw"):
+        hog_view(no_raw, plane="gray")
+    with pytest.raises(ValueError, match="plane"):
+        lbp_view(patches, plane="sobel")
 
 
 def test_lbp_view_is_4x4_grid_of_10_codes(gray_patches):

@@ -107,9 +107,10 @@ class TrackerConfig:
         Smooth each plane before sampling it on the patch grids, by a Gaussian
         of ``antialias`` times the sampling step (target size over patch size,
         :meth:`smtmvt.Tracker._views`); 0 samples the planes as they are.
-    texture_source : str
-        Plane the HOG and LBP views are computed on: ``"tan_triggs"`` (the
-        paper: every view after the illumination normalization) or ``"gray"``.
+    hog_plane, lbp_plane : str
+        Plane the HOG and the LBP views are computed on: ``"tan_triggs"`` (the
+        paper: every view after the illumination normalization) or ``"gray"``
+        (the gray frame itself).
     color_grid : int
         Cells per side of the color view (:func:`smtmvt.features.color.color_view`);
         1 is one histogram of the whole box.
@@ -146,7 +147,8 @@ class TrackerConfig:
     frame_size: tuple | None = None
     scale_normalize: bool = False
     antialias: float = 0.0
-    texture_source: str = "tan_triggs"
+    hog_plane: str = "tan_triggs"
+    lbp_plane: str = "tan_triggs"
     color_grid: int = 1
     lbp_radius: float = 1.0
     blas_threads: int | None = 1
@@ -168,7 +170,8 @@ class TrackerConfig:
             "prune_eps": 0 <= self.prune_eps < 1,
             "frame_size": self.frame_size is None or (len(self.frame_size) == 2 and min(self.frame_size) >= 16),
             "antialias": self.antialias >= 0,
-            "texture_source": self.texture_source in ("tan_triggs", "gray"),
+            "hog_plane": self.hog_plane in ("tan_triggs", "gray"),
+            "lbp_plane": self.lbp_plane in ("tan_triggs", "gray"),
             "color_grid": int(self.color_grid) >= 1,
             "lbp_radius": self.lbp_radius > 0,
             "velocity": 0 <= self.velocity <= 1,
@@ -203,7 +206,7 @@ class TrackerConfig:
             affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0), estimate="best", velocity=0.0, feature_size=(32, 32),
             model="smtmvt", solver="admm", solver_tol=1e-3, solver_max_iter=200,
             update_angle=60.0, occlusion_fraction=0.25, anchor_cos=-1.0, frame_size=(320, 240), scale_normalize=False, antialias=0.0,
-            texture_source="tan_triggs", color_grid=1, lbp_radius=1.0,
+            hog_plane="tan_triggs", lbp_plane="tan_triggs", color_grid=1, lbp_radius=1.0,
         )
         base.update(changes)
         return cls(**base)

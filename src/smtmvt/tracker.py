@@ -146,7 +146,6 @@ class Tracker:
         """
         cfg = self.config
         fs = cfg.feature_size
-        texture = frame.normalized if cfg.texture_source == "tan_triggs" else frame.gray
         w, h = self._work_box[2] * plane_scale, self._work_box[3] * plane_scale
         step_i = max(w / self._intensity_size[1], h / self._intensity_size[0])
         step_f = max(w / fs[1], h / fs[0])
@@ -162,9 +161,10 @@ class Tracker:
             X, Y = grid(fs)
             patches = Patches(
                 intensity=remap_patches(smooth(frame.normalized, cfg.antialias * step_i), *grid(self._intensity_size)),
-                gray=remap_patches(smooth(texture, cfg.antialias * step_f), X, Y),
+                gray=remap_patches(smooth(frame.normalized, cfg.antialias * step_f), X, Y),
                 color=remap_patches(smooth(frame.color, cfg.antialias * step_f), X, Y).reshape(
                     len(params), fs[0], fs[1], -1),
+                raw=remap_patches(smooth(frame.gray, cfg.antialias * step_f), X, Y) if self._needs_raw else None,
             )
         with self._timed("features"):
             return extract_views(patches, cfg.views, self._view_options)
@@ -228,7 +228,10 @@ class Tracker:
             )
         self.timings = defaultdict(float)
         self._intensity_size = intensity_template_size(wb[2], wb[3])  # in the working frame, as the paper
-        self._view_options = {"color": {"grid": cfg.color_grid}, "lbp": {"radius": cfg.lbp_radius}}
+        self._view_options = {"color": {"grid": cfg.color_grid},
+                              "hog": {"plane": cfg.hog_plane},
+                              "lbp": {"radius": cfg.lbp_radius, "plane": cfg.lbp_plane}}
+        self._needs_raw = "gray" in (cfg.hog_plane, cfg.lbp_plane)
         self._rng = np.random.default_rng(cfg.seed)
         self._state = box_to_affine(wb)
         self._init_state = self._state.copy()

@@ -259,17 +259,18 @@ def hog_descriptors(images: np.ndarray, orientations: int = HOG_ORIENTATIONS,
     return blocks.reshape(n, -1).astype(np.float32)
 
 
-def hog_view(patches) -> np.ndarray:
-    """HOG view on the Tan-Triggs gray patches.
+def hog_view(patches, plane: str = "tan_triggs") -> np.ndarray:
+    """HOG view on the Tan-Triggs gray patches (or the raw gray ones).
 
     Parameters
     ----------
     patches : Patches
-        Uses ``patches.gray``, ``(n, fh, fw)`` float32.
+        Uses ``patches.plane(plane)``, ``(n, fh, fw)`` float32.
+    plane : ``"tan_triggs"`` (``patches.gray``, the paper) or ``"gray"`` (``patches.raw``).
 
     Returns
     -------
     (n, d) float32 ndarray; 9 orientations, 8x8 px cells, 2x2 cell blocks,
     L2-Hys: ``d = 324`` for the default 32x32 feature size.
     """
-    return hog_descriptors(patches.gray, HOG_ORIENTATIONS, HOG_CELL, HOG_BLOCK)
+    return hog_descriptors(patches.plane(plane), HOG_ORIENTATIONS, HOG_CELL, HOG_BLOCK)

@@ -195,20 +195,21 @@ def lbp_histograms(codes: np.ndarray, n_codes: int, grid: int = LBP_GRID) -> np.
     return hist.reshape(n, -1).astype(np.float32)
 
 
-def lbp_view(patches, radius: float = LBP_R) -> np.ndarray:
-    """LBP view on the Tan-Triggs gray patches.
+def lbp_view(patches, radius: float = LBP_R, plane: str = "tan_triggs") -> np.ndarray:
+    """LBP view on the Tan-Triggs gray patches (or the raw gray ones).
 
     Parameters
     ----------
     patches : Patches
-        Uses ``patches.gray``, ``(n, fh, fw)`` float32.
+        Uses ``patches.plane(plane)``, ``(n, fh, fw)`` float32.
     radius : float
         Radius of the 8 neighbours, pixels of the feature patch (default 1).
+    plane : ``"tan_triggs"`` (``patches.gray``, the paper) or ``"gray"`` (``patches.raw``).
 
     Returns
     -------
     (n, 4 * 4 * 10) = (n, 160) float32 ndarray: uniform LBP (P = 8, codes
     0..9) histograms over a 4x4 grid of cells.
     """
-    codes = lbp_codes(patches.gray, LBP_P, radius)
+    codes = lbp_codes(patches.plane(plane), LBP_P, radius)
     return lbp_histograms(codes, LBP_P + 2, LBP_GRID)

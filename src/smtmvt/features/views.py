@@ -63,6 +63,9 @@ class Patches:
     color : (n, fh, fw, C) float32
         Raw frame colors scaled to [0, 1], C = 3 (RGB) or C = 1 (gray frames),
         at the same size as ``gray``; input of the color view.
+    raw : (n, fh, fw) float32 or None
+        The gray frame *before* Tan-Triggs, at the feature size; input of the
+        HOG and LBP views when they are asked for ``plane="gray"``.
 
     Arrays are converted to C-contiguous float32 (no copy when they already
     are); shapes are checked, values are not.
@@ -71,11 +74,17 @@ class Patches:
     intensity: np.ndarray
     gray: np.ndarray
     color: np.ndarray
+    raw: np.ndarray | None = None
 
     def __post_init__(self):
         intensity = _as_float32("intensity", self.intensity, 3, "(n, th, tw)")
         gray = _as_float32("gray", self.gray, 3, "(n, fh, fw)")
         color = _as_float32("color", self.color, 4, "(n, fh, fw, C)")
+        if self.raw is not None:
+            raw = _as_float32("raw", self.raw, 3, "(n, fh, fw)")
+            if raw.shape != gray.shape:
+                raise ValueError(f"Patches.raw has shape {raw.shape}, Patches.gray {gray.shape}")
+            object.__setattr__(self, "raw", raw)
         n = intensity.shape[0]
         if n < 1:
             raise ValueError("Patches need at least one patch (n >= 1)")
@@ -109,7 +118,18 @@ class Patches:
     def subset(self, index) -> "Patches":
         """The patches selected by ``index`` (an int, slice, mask or index array)."""
         index = np.atleast_1d(np.arange(self.n)[index])
-        return Patches(self.intensity[index], self.gray[index], self.color[index])
+        raw = None if self.raw is None else self.raw[index]
+        return Patches(self.intensity[index], self.gray[index], self.color[index], raw)
+
+    def plane(self, name: str) -> np.ndarray:
+        """The feature-size gray patches of ``name``: ``"tan_triggs"`` (``gray``) or ``"gray"`` (``raw``)."""
+        if name == "tan_triggs":
+            return self.gray
+        if name == "gray":
+            if self.raw is None:
+                raise ValueError("Patches.raw (the gray plane before Tan-Triggs) was not given")
+            return self.raw
+        raise ValueError(f"unknown plane {name!r}: use 'tan_triggs' or 'gray'")
 
 
 DEFAULT_VIEWS = ("intensity", "color", "hog", "lbp")
