@@ -5,7 +5,7 @@ Usage::
     OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 python bench/speed.py --sequence DIR [--frames N] [--rounds R]
 
 Loads the frames first (no I/O in the timing), then tracks them with ``smtmvt``
-(the default :class:`smtmvt.TrackerConfig`) and with ``opencv-csrt`` (OpenCV's
+(the default :class:`smtmvt.TrackerConfig`, or ``--config`` fields) and with ``opencv-csrt`` (OpenCV's
 defaults, driven by the evaluation's adapter), alternately for ``--rounds``
 rounds, with BLAS and OpenCV limited to one thread. Prints smtmvt's
 milliseconds per frame for each stage (warp, features, solve, likelihood,
@@ -18,6 +18,7 @@ Nothing is asserted: speed is measured here, never in tests.
 from __future__ import annotations
 
 import argparse
+import json
 import time
 from pathlib import Path
 
@@ -31,8 +32,8 @@ from smtmvt.evaluation.trackers import make_tracker
 STAGES = ("preprocess", "motion", "warp", "features", "solve", "likelihood", "update")
 
 
-def run_smtmvt(frames, box):
-    tracker = Tracker(TrackerConfig(seed=0))
+def run_smtmvt(frames, box, config: TrackerConfig):
+    tracker = Tracker(config)
     t0 = time.perf_counter()
     tracker.init(frames[0], box)
     tracker.timings.clear()
@@ -57,18 +58,20 @@ def main() -> None:
     ap.add_argument("--sequence", default=str(default))
     ap.add_argument("--frames", type=int, default=120)
     ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--config", default="{}", help="TrackerConfig fields as JSON (default: the defaults)")
     args = ap.parse_args()
+    config = TrackerConfig(**{**json.loads(args.config), "seed": 0})
     cv2.setNumThreads(1)
     seq = open_sequence(args.sequence)
     n = min(args.frames, len(seq))
     frames = [seq[i] for i in range(n)]
     box = seq.first_box
     with threadpool_limits(limits=1):
-        run_smtmvt(frames[:3], box)  # compile the numba kernels, warm the caches
+        run_smtmvt(frames[:3], box, config)  # compile the numba kernels, warm the caches
         run_csrt(frames[:3], box)
         ours, theirs, stages = [], [], []
         for _ in range(args.rounds):
-            total, timings = run_smtmvt(frames, box)
+            total, timings = run_smtmvt(frames, box, config)
             ours.append(total)
             stages.append(timings)
             theirs.append(run_csrt(frames, box))
