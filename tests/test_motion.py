@@ -51,3 +51,12 @@ def test_propagate_shift_moves_every_particle_before_the_noise():
     still = propagate(p0, (0.01, 0, 0, 0.01, 4, 4), rng_b)
     np.testing.assert_allclose(moved[:, 4:] - still[:, 4:], np.tile([3.0, -2.0], (7, 1)), atol=1e-12)
     np.testing.assert_array_equal(moved[:, :4], still[:, :4])
+
+
+def test_propagate_spread_scales_each_particles_noise():
+    p0 = np.repeat(box_to_affine((50, 50, 32, 32))[None], 20000, axis=0)
+    spread = np.r_[np.full(10000, 0.25), np.ones(10000)]
+    p1 = propagate(p0, (0.01, 0, 0, 0.01, 4.0, 4.0), np.random.default_rng(5), spread=spread)
+    dx = p1[:, 4] - p0[:, 4]
+    assert np.std(dx[:10000]) == pytest.approx(1.0, rel=0.03)
+    assert np.std(dx[10000:]) == pytest.approx(4.0, rel=0.03)

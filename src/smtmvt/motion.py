@@ -19,7 +19,7 @@ from .geometry import affine_scale
 __all__ = ["propagate", "resample"]
 
 
-def propagate(params, std, rng: np.random.Generator, shift=None) -> np.ndarray:
+def propagate(params, std, rng: np.random.Generator, shift=None, spread=None) -> np.ndarray:
     """One step of the random walk.
 
     Parameters
@@ -29,6 +29,8 @@ def propagate(params, std, rng: np.random.Generator, shift=None) -> np.ndarray:
     rng : numpy Generator (the tracker's seeded generator).
     shift : optional (2,) translation ``(dx, dy)`` pixels added to every
         particle before the noise (a constant-velocity prediction).
+    spread : optional (n,) factor multiplying every standard deviation of
+        each particle (e.g. a fraction of the particles searching narrowly).
 
     Returns
     -------
@@ -40,6 +42,8 @@ def propagate(params, std, rng: np.random.Generator, shift=None) -> np.ndarray:
     s = np.asarray(std, dtype=np.float64)
     sc = affine_scale(p)[:, None]
     noise = rng.standard_normal(p.shape)
+    if spread is not None:
+        noise *= np.asarray(spread, dtype=np.float64).reshape(-1, 1)
     p[:, 0] *= np.exp(s[0] * noise[:, 0])
     p[:, 3] *= np.exp(s[3] * noise[:, 3])
     p[:, 1] += s[1] * sc[:, 0] * noise[:, 1]

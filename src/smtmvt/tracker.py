@@ -236,6 +236,11 @@ class Tracker:
         self._state = box_to_affine(wb)
         self._init_state = self._state.copy()
         self._velocity = np.zeros(2)
+        # the first narrow_fraction of the particles search with narrow_scale times the std
+        self._spread = None
+        if cfg.narrow_fraction > 0:
+            self._spread = np.ones(cfg.n_particles)
+            self._spread[: int(round(cfg.narrow_fraction * cfg.n_particles))] = cfg.narrow_scale
         self._work_box = tuple(float(v) for v in wb)
         self._box = tuple(float(v) for v in b)
         t_states = self._template_states(self._state)
@@ -298,7 +303,7 @@ class Tracker:
         with self._timed("motion"):
             particles = resample(self._particles, self._weights, cfg.n_particles)
             shift = cfg.velocity * self._velocity if cfg.velocity else None
-            particles = propagate(particles, cfg.affine_std, self._rng, shift)
+            particles = propagate(particles, cfg.affine_std, self._rng, shift, self._spread)
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
