@@ -60,3 +60,11 @@ def test_propagate_spread_scales_each_particles_noise():
     dx = p1[:, 4] - p0[:, 4]
     assert np.std(dx[:10000]) == pytest.approx(1.0, rel=0.03)
     assert np.std(dx[10000:]) == pytest.approx(4.0, rel=0.03)
+
+
+def test_translation_power_half_grows_the_search_as_the_root_of_the_size():
+    rng = np.random.default_rng(6)
+    p0 = np.repeat(box_to_affine((100, 100, 128, 128))[None], 20000, axis=0)
+    sc = affine_scale(p0[:1])[0]  # 4
+    p1 = propagate(p0, (0, 0, 0, 0, 4.0, 4.0), rng, translation_power=0.5)
+    assert np.std(p1[:, 4] - p0[:, 4]) == pytest.approx(4.0 * np.sqrt(sc), rel=0.03)

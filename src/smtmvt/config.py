@@ -42,6 +42,11 @@ class TrackerConfig:
         Girl, Jumping, CarDark) with ``update_angle`` 60: translation 8 gave a
         mean overlap of 0.710, translation 6 gave 0.528 (Subway and Jumping,
         with fast motion, were lost).
+    translation_power : float
+        The translation std is ``affine_std[4:] * sc ** translation_power``
+        pixels (``sc`` about the target size over 32): 1 as L1-APG and MTT;
+        0.5 lets large targets search fewer pixels (Car4: 27 px per frame at
+        1, where the car moves a few).
     narrow_fraction, narrow_scale : float
         A two-scale search: this fraction of the particles is drawn with
         ``narrow_scale`` times every standard deviation of ``affine_std`` (fine
@@ -138,6 +143,7 @@ class TrackerConfig:
     n_templates: int = 10
     views: tuple = ("intensity", "color", "hog", "lbp")
     affine_std: tuple = (0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0)
+    translation_power: float = 1.0
     narrow_fraction: float = 0.0
     narrow_scale: float = 0.25
     estimate: str = "best"
@@ -185,6 +191,7 @@ class TrackerConfig:
             "estimate": self.estimate in ("best", "mean"),
             "narrow_fraction": 0 <= self.narrow_fraction <= 1,
             "narrow_scale": self.narrow_scale > 0,
+            "translation_power": 0 <= self.translation_power <= 1,
         }
         for name, ok in checks.items():
             if not ok:
@@ -212,7 +219,7 @@ class TrackerConfig:
         base = dict(
             lam=0.1, gamma=0.25, alpha=30.0, n_particles=400, n_templates=10,
             views=("intensity", "color", "hog", "lbp"),
-            affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0), narrow_fraction=0.0, narrow_scale=0.25, estimate="best", velocity=0.0, feature_size=(32, 32),
+            affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0), translation_power=1.0, narrow_fraction=0.0, narrow_scale=0.25, estimate="best", velocity=0.0, feature_size=(32, 32),
             model="smtmvt", solver="admm", solver_tol=1e-3, solver_max_iter=200,
             update_angle=60.0, occlusion_fraction=0.25, anchor_cos=-1.0, frame_size=(320, 240), scale_normalize=False, antialias=0.0,
             hog_plane="tan_triggs", lbp_plane="tan_triggs", color_grid=1, lbp_radius=1.0,

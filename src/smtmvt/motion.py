@@ -19,7 +19,8 @@ from .geometry import affine_scale
 __all__ = ["propagate", "resample"]
 
 
-def propagate(params, std, rng: np.random.Generator, shift=None, spread=None) -> np.ndarray:
+def propagate(params, std, rng: np.random.Generator, shift=None, spread=None,
+              translation_power: float = 1.0) -> np.ndarray:
     """One step of the random walk.
 
     Parameters
@@ -31,6 +32,10 @@ def propagate(params, std, rng: np.random.Generator, shift=None, spread=None) ->
         particle before the noise (a constant-velocity prediction).
     spread : optional (n,) factor multiplying every standard deviation of
         each particle (e.g. a fraction of the particles searching narrowly).
+    translation_power : the translation std is ``std[4:] * sc ** translation_power``
+        pixels: 1 (L1-APG, MTT) grows it with the target's size, 0.5 grows it
+        as the square root (large targets move about as many pixels as small
+        ones between frames).
 
     Returns
     -------
@@ -48,7 +53,7 @@ def propagate(params, std, rng: np.random.Generator, shift=None, spread=None) ->
     p[:, 3] *= np.exp(s[3] * noise[:, 3])
     p[:, 1] += s[1] * sc[:, 0] * noise[:, 1]
     p[:, 2] += s[2] * sc[:, 0] * noise[:, 2]
-    p[:, 4:] += s[4:] * sc * noise[:, 4:]
+    p[:, 4:] += s[4:] * sc**translation_power * noise[:, 4:]
     return p
 
 

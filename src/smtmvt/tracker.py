@@ -303,7 +303,8 @@ class Tracker:
         with self._timed("motion"):
             particles = resample(self._particles, self._weights, cfg.n_particles)
             shift = cfg.velocity * self._velocity if cfg.velocity else None
-            particles = propagate(particles, cfg.affine_std, self._rng, shift, self._spread)
+            particles = propagate(particles, cfg.affine_std, self._rng, shift, self._spread,
+                                  cfg.translation_power)
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
