@@ -41,16 +41,37 @@ def test_track_with_box_max_frames_and_video(otb_folder, tmp_path):
     root, gt = otb_folder
     out, video = tmp_path / "res.txt", tmp_path / "v.gif"
     box = ",".join(f"{v:g}" for v in gt[0])
-    assert main(["track", str(root / "img"), "--out", str(out), "--box", box, "--max-frames", "3",
-                 "--particles", "50", "--video", str(video), "--quiet"]) == 0
+    assert (
+        main(
+            [
+                "track",
+                str(root / "img"),
+                "--out",
+                str(out),
+                "--box",
+                box,
+                "--max-frames",
+                "3",
+                "--particles",
+                "50",
+                "--video",
+                str(video),
+                "--quiet",
+            ]
+        )
+        == 0
+    )
     assert len(out.read_text().splitlines()) == 3
     assert video.stat().st_size > 1000
 
 
-@pytest.mark.parametrize("args,match", [
-    (["--box", "1,2,3"], "--box must be four numbers"),
-    (["--box", "1,2,0,5"], "zero or negative size"),
-])
+@pytest.mark.parametrize(
+    "args,match",
+    [
+        (["--box", "1,2,3"], "--box must be four numbers"),
+        (["--box", "1,2,0,5"], "zero or negative size"),
+    ],
+)
 def test_track_bad_box_is_a_clear_error(otb_folder, tmp_path, capsys, args, match):
     root, _ = otb_folder
     with pytest.raises(SystemExit) if "four" in match else _no_raise():

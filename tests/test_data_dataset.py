@@ -12,7 +12,6 @@ from smtmvt.data import (
     load_attributes,
     open_dataset,
 )
-
 from test_data_sequence import make_otb
 
 
@@ -38,9 +37,7 @@ def bench(tmp_path):
 
 
 def test_list_dataset_names_sorted_and_targets_expanded(bench):
-    assert [e[0] for e in list_dataset(bench)] == [
-        "Alpha", "Bad", "beta", "Empty", "Jogging-1", "Jogging-2", "NoGt"
-    ]
+    assert [e[0] for e in list_dataset(bench)] == ["Alpha", "Bad", "beta", "Empty", "Jogging-1", "Jogging-2", "NoGt"]
 
 
 def test_open_dataset_collect_keeps_going_and_names_files(bench):
@@ -90,7 +87,7 @@ def test_flag_file_order_is_the_toolkits(tmp_path):
     att = tmp_path / "anno" / "att"
     att.mkdir(parents=True)
     # one flag at a time: position k of the file is OTB_FLAG_ORDER[k]
-    for k, code in enumerate(OTB_FLAG_ORDER):
+    for k in range(len(OTB_FLAG_ORDER)):
         flags = ["0"] * 11
         flags[k] = "1"
         (att / f"s{k}.txt").write_text(",".join(flags))

@@ -25,8 +25,7 @@ def _frame(i, shape=(6, 8)):
     return img
 
 
-def make_otb(root, name="Seq", n=5, gt_lines=None, fmt="{:04d}.png", start=1, gt_name="groundtruth_rect.txt",
-             sep=","):
+def make_otb(root, name="Seq", n=5, gt_lines=None, fmt="{:04d}.png", start=1, gt_name="groundtruth_rect.txt", sep=","):
     """An OTB folder ``root/name`` with ``n`` frames and a ground truth of ``gt_lines`` lines."""
     folder = root / name
     (folder / "img").mkdir(parents=True)
@@ -152,7 +151,7 @@ def test_invalid_boxes_become_nan_rows(tmp_path):
     assert seq.annotated.tolist() == [False, True, False, False]
     assert np.isnan(seq.groundtruth[[0, 2, 3]]).all()
     with pytest.raises(ValueError, match="frame 0"):
-        seq.first_box
+        _ = seq.first_box
 
 
 def test_two_targets_pick_first_with_warning_or_the_one_asked(tmp_path):
@@ -240,7 +239,7 @@ def test_image_folder_sorted_naturally(tmp_path):
     assert seq.frame_names[:3] == ["img1.png", "img2.png", "img3.png"] and seq.frame_names[-1] == "img12.png"
     assert [red_of(f) for f in seq] == [10 * k for k in range(1, 13)]
     with pytest.raises(ValueError, match="no ground truth"):
-        seq.first_box
+        _ = seq.first_box
 
 
 def test_image_folder_with_groundtruth_beside(tmp_path):

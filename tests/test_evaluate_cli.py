@@ -28,8 +28,19 @@ def result_files(run_dir) -> dict:
 
 def test_evaluate_no_report(dataset, tmp_path, capsys):
     run_dir = tmp_path / "run"
-    rc = main(["evaluate", "--dataset", str(dataset), "--trackers", "opencv-kcf,opencv-medianflow",
-               "--out", str(run_dir), "--no-report", "--quiet"])
+    rc = main(
+        [
+            "evaluate",
+            "--dataset",
+            str(dataset),
+            "--trackers",
+            "opencv-kcf,opencv-medianflow",
+            "--out",
+            str(run_dir),
+            "--no-report",
+            "--quiet",
+        ]
+    )
     out, err = capsys.readouterr()
     assert rc == 0, err
     assert "6 pair(s) run (90 frames)" in out and str(run_dir / "results") in out
@@ -38,16 +49,39 @@ def test_evaluate_no_report(dataset, tmp_path, capsys):
     assert all(len(p.read_text().splitlines()) == 15 for p in files.values())
     assert not (run_dir / "report").exists()
     # a second call finds everything done
-    rc = main(["evaluate", "--dataset", str(dataset), "--trackers", "opencv-kcf,opencv-medianflow",
-               "--out", str(run_dir), "--no-report", "--quiet"])
+    rc = main(
+        [
+            "evaluate",
+            "--dataset",
+            str(dataset),
+            "--trackers",
+            "opencv-kcf,opencv-medianflow",
+            "--out",
+            str(run_dir),
+            "--no-report",
+            "--quiet",
+        ]
+    )
     out, _ = capsys.readouterr()
     assert rc == 0 and "0 pair(s) run" in out and "6 already done" in out
 
 
 def test_evaluate_with_report_then_report_command(dataset, tmp_path, capsys):
     run_dir = tmp_path / "run"
-    rc = main(["evaluate", "--dataset", str(dataset), "--trackers", "opencv-csrt,opencv-kcf",
-               "--out", str(run_dir), "--quiet", "--workers", "2"])
+    rc = main(
+        [
+            "evaluate",
+            "--dataset",
+            str(dataset),
+            "--trackers",
+            "opencv-csrt,opencv-kcf",
+            "--out",
+            str(run_dir),
+            "--quiet",
+            "--workers",
+            "2",
+        ]
+    )
     out, err = capsys.readouterr()
     assert rc == 0, err
     report = run_dir / "report"
@@ -72,8 +106,21 @@ def test_evaluate_with_report_then_report_command(dataset, tmp_path, capsys):
 
 def test_unknown_tracker_exit_1_and_known_ones_run(dataset, tmp_path, capsys):
     run_dir = tmp_path / "run"
-    rc = main(["evaluate", "--dataset", str(dataset), "--trackers", "opencv-kcf,opencv-kfc",
-               "--sequences", "SquareA", "--out", str(run_dir), "--no-report", "--quiet"])
+    rc = main(
+        [
+            "evaluate",
+            "--dataset",
+            str(dataset),
+            "--trackers",
+            "opencv-kcf,opencv-kfc",
+            "--sequences",
+            "SquareA",
+            "--out",
+            str(run_dir),
+            "--no-report",
+            "--quiet",
+        ]
+    )
     out, err = capsys.readouterr()
     assert rc == 1
     assert "unknown tracker 'opencv-kfc'" in err and "opencv-csrt" in err  # lists the names
@@ -88,8 +135,9 @@ def test_bad_dataset_errors_name_file_and_line(dataset, tmp_path, capsys):
     lines[4] = "1;2;3;4"
     gt.write_text("\n".join(lines) + "\n")
     (root / "SquareC" / "img" / "0003.png").unlink()
-    rc = main(["evaluate", "--dataset", str(root), "--trackers", "opencv-kcf", "--out", str(tmp_path / "run"),
-               "--quiet"])
+    rc = main(
+        ["evaluate", "--dataset", str(root), "--trackers", "opencv-kcf", "--out", str(tmp_path / "run"), "--quiet"]
+    )
     out, err = capsys.readouterr()
     assert rc == 1
     assert f"{gt}, line 5" in err
@@ -99,44 +147,103 @@ def test_bad_dataset_errors_name_file_and_line(dataset, tmp_path, capsys):
 
 
 def test_whole_command_errors_exit_2(tmp_path, capsys):
-    rc = main(["evaluate", "--dataset", str(tmp_path / "missing"), "--trackers", "opencv-kcf",
-               "--out", str(tmp_path / "run")])
+    rc = main(
+        ["evaluate", "--dataset", str(tmp_path / "missing"), "--trackers", "opencv-kcf", "--out", str(tmp_path / "run")]
+    )
     err = capsys.readouterr().err
     assert rc == 2 and "smtmvt evaluate: error: dataset folder not found" in err
-    rc = main(["evaluate", "--dataset", str(tmp_path), "--trackers", "opencv-kcf", "--out", str(tmp_path / "r"),
-               "--tracker-option", "opencv-kcf=1"])
+    rc = main(
+        [
+            "evaluate",
+            "--dataset",
+            str(tmp_path),
+            "--trackers",
+            "opencv-kcf",
+            "--out",
+            str(tmp_path / "r"),
+            "--tracker-option",
+            "opencv-kcf=1",
+        ]
+    )
     assert rc == 2 and "TRACKER:KEY=VALUE" in capsys.readouterr().err
     rc = main(["report", str(tmp_path / "no-run")])
     assert rc == 2 and "run folder not found" in capsys.readouterr().err
 
 
 def test_tracker_options_and_max_frames(dataset, tmp_path, capsys):
-    assert parse_tracker_options(["smtmvt:n_particles=200", "opencv-kcf:detect_thresh=0.2",
-                                  "x:name=abc"]) == {"smtmvt": {"n_particles": 200},
-                                                     "opencv-kcf": {"detect_thresh": 0.2},
-                                                     "x": {"name": "abc"}}
+    assert parse_tracker_options(["smtmvt:n_particles=200", "opencv-kcf:detect_thresh=0.2", "x:name=abc"]) == {
+        "smtmvt": {"n_particles": 200},
+        "opencv-kcf": {"detect_thresh": 0.2},
+        "x": {"name": "abc"},
+    }
     run_dir = tmp_path / "run"
-    rc = main(["evaluate", "--dataset", str(dataset), "--trackers", "opencv-kcf", "--sequences", "SquareC",
-               "--out", str(run_dir), "--max-frames", "6", "--tracker-option", "opencv-kcf:detect_thresh=0.3",
-               "--no-report", "--quiet"])
+    rc = main(
+        [
+            "evaluate",
+            "--dataset",
+            str(dataset),
+            "--trackers",
+            "opencv-kcf",
+            "--sequences",
+            "SquareC",
+            "--out",
+            str(run_dir),
+            "--max-frames",
+            "6",
+            "--tracker-option",
+            "opencv-kcf:detect_thresh=0.3",
+            "--no-report",
+            "--quiet",
+        ]
+    )
     out, err = capsys.readouterr()
     assert rc == 0, err
     assert "not OTB-compliant" in out
     assert len((run_dir / "results" / "opencv-kcf" / "SquareC.txt").read_text().splitlines()) == 6
     assert json.loads((run_dir / "run.json").read_text())["max_frames"] == 6
-    rc = main(["evaluate", "--dataset", str(dataset), "--trackers", "opencv-kcf", "--max-frames", "6",
-               "--out", str(run_dir), "--tracker-option", "opencv-kcf:nope=1", "--no-report", "--quiet"])
+    rc = main(
+        [
+            "evaluate",
+            "--dataset",
+            str(dataset),
+            "--trackers",
+            "opencv-kcf",
+            "--max-frames",
+            "6",
+            "--out",
+            str(run_dir),
+            "--tracker-option",
+            "opencv-kcf:nope=1",
+            "--no-report",
+            "--quiet",
+        ]
+    )
     err = capsys.readouterr().err
     assert rc == 1 and err.count("unknown option 'nope'") == 1  # reported once, not per sequence
 
 
 def test_killed_run_restarts_without_redoing_finished_pairs(tmp_path):
     """Kill `smtmvt evaluate` (SIGKILL) once some pairs are written; the restart skips them."""
-    root = make_otb_dataset(tmp_path / "otb", n_frames=30, specs={
-        f"Seq{k}": dict(start=(20 + 5 * k, 30), step=(1.5, 0.5), side=(30, 28)) for k in range(8)})
+    root = make_otb_dataset(
+        tmp_path / "otb",
+        n_frames=30,
+        specs={f"Seq{k}": dict(start=(20 + 5 * k, 30), step=(1.5, 0.5), side=(30, 28)) for k in range(8)},
+    )
     run_dir = tmp_path / "run"
-    cmd = [sys.executable, "-m", "smtmvt.cli", "evaluate", "--dataset", str(root),
-           "--trackers", "opencv-kcf", "--out", str(run_dir), "--no-report", "--quiet"]
+    cmd = [
+        sys.executable,
+        "-m",
+        "smtmvt.cli",
+        "evaluate",
+        "--dataset",
+        str(root),
+        "--trackers",
+        "opencv-kcf",
+        "--out",
+        str(run_dir),
+        "--no-report",
+        "--quiet",
+    ]
     env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1] / "src"))
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
     deadline = time.monotonic() + 120
@@ -166,9 +273,23 @@ def test_killed_run_restarts_without_redoing_finished_pairs(tmp_path):
 
 
 def test_evaluate_on_real_data(otb_dir, tmp_path, capsys):
-    rc = main(["evaluate", "--dataset", str(otb_dir), "--trackers", "opencv-kcf,opencv-csrt",
-               "--sequences", "CarDark,Jumping", "--max-frames", "30", "--out", str(tmp_path / "run"),
-               "--no-report", "--quiet"])
+    rc = main(
+        [
+            "evaluate",
+            "--dataset",
+            str(otb_dir),
+            "--trackers",
+            "opencv-kcf,opencv-csrt",
+            "--sequences",
+            "CarDark,Jumping",
+            "--max-frames",
+            "30",
+            "--out",
+            str(tmp_path / "run"),
+            "--no-report",
+            "--quiet",
+        ]
+    )
     out, err = capsys.readouterr()
     assert rc == 0, err
     gt_first = (otb_dir / "CarDark" / "groundtruth_rect.txt").read_text().splitlines()[0]
@@ -183,8 +304,21 @@ def test_report_imports_published_results(otb_dir, otb_results_dir, tmp_path, ca
     """`report --import` scores a published tracker's per-frame results on our sequences:
     Struck's OTB-2013 run averages 0.67 overlap on Crossing (data README)."""
     run_dir = tmp_path / "run"
-    rc = main(["evaluate", "--dataset", str(otb_dir), "--trackers", "opencv-kcf", "--sequences", "Crossing",
-               "--out", str(run_dir), "--no-report", "--quiet"])
+    rc = main(
+        [
+            "evaluate",
+            "--dataset",
+            str(otb_dir),
+            "--trackers",
+            "opencv-kcf",
+            "--sequences",
+            "Crossing",
+            "--out",
+            str(run_dir),
+            "--no-report",
+            "--quiet",
+        ]
+    )
     assert rc == 0
     capsys.readouterr()
     rc = main(["report", str(run_dir), "--import", f"{otb_results_dir / 'OPE' / 'STRUCK'}:struck-2013"])

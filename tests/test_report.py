@@ -13,7 +13,6 @@ import pytest
 
 from smtmvt.evaluation.report import build_report
 
-
 # ----------------------------------------------------------------------------- independent scoring
 
 
@@ -38,8 +37,13 @@ def expected_scores(pred, gt):
     errs = [_err(p, g) for p, g in zip(pred, gt)]
     succ = [sum(i > t for i in ious) / len(ious) for t in [k * 0.05 for k in range(21)]]
     prec = [sum(e <= t for e in errs) / len(errs) for t in range(51)]
-    return {"avg_overlap": sum(ious) / len(ious), "auc": sum(succ) / 21, "precision20": prec[20],
-            "success": succ, "precision": prec}
+    return {
+        "avg_overlap": sum(ious) / len(ious),
+        "auc": sum(succ) / 21,
+        "precision20": prec[20],
+        "success": succ,
+        "precision": prec,
+    }
 
 
 # ----------------------------------------------------------------------------- synthetic run
@@ -78,19 +82,36 @@ def run(tmp_path):
 
     rd = tmp_path / "run"
     preds = {
-        "alpha": {"SeqA": _shifted(gts["SeqA"], 4), "SeqB": _shifted(gts["SeqB"], 12), "SeqC": _shifted(gts["SeqC"], 2)},
-        "beta": {"SeqA": _shifted(gts["SeqA"], 9, 2), "SeqB": _shifted(gts["SeqB"], 3), "SeqC": _shifted(gts["SeqC"], 1)[:5]},
+        "alpha": {
+            "SeqA": _shifted(gts["SeqA"], 4),
+            "SeqB": _shifted(gts["SeqB"], 12),
+            "SeqC": _shifted(gts["SeqC"], 2),
+        },
+        "beta": {
+            "SeqA": _shifted(gts["SeqA"], 9, 2),
+            "SeqB": _shifted(gts["SeqB"], 3),
+            "SeqC": _shifted(gts["SeqC"], 1)[:5],
+        },
     }
     for t, by_seq in preds.items():
         for s, rows in by_seq.items():
             _write(rd / "results" / t / f"{s}.txt", rows)
     for s, n in SEQS.items():  # alpha: 0.02 s per frame -> 50 fps; beta: no times
         _write(rd / "results" / "alpha" / "times" / f"{s}_time.txt", [[0.02]] * n)
-    (rd / "run.json").write_text(json.dumps({
-        "dataset": str(ds), "trackers": ["alpha", "beta", "gamma"], "sequences": list(SEQS),
-        "attributes": str(tmp_path / "attrs.txt"), "published": None}))
-    (rd / "errors.json").write_text(json.dumps([
-        {"tracker": "gamma", "sequence": None, "error": "unknown tracker 'gamma'"}]))
+    (rd / "run.json").write_text(
+        json.dumps(
+            {
+                "dataset": str(ds),
+                "trackers": ["alpha", "beta", "gamma"],
+                "sequences": list(SEQS),
+                "attributes": str(tmp_path / "attrs.txt"),
+                "published": None,
+            }
+        )
+    )
+    (rd / "errors.json").write_text(
+        json.dumps([{"tracker": "gamma", "sequence": None, "error": "unknown tracker 'gamma'"}])
+    )
     return {"dir": rd, "gts": gts, "preds": preds, "tmp": tmp_path}
 
 
@@ -116,15 +137,19 @@ def test_summary_numbers(run):
         assert tr["precision20"] == pytest.approx(mean_prec[20], abs=1e-12)
         np.testing.assert_allclose(tr["success"], mean_succ, atol=1e-12)
     # a non-trivial case: the two trackers differ and are not perfect
-    assert 0.2 < on_disk["trackers"]["beta"]["auc"] < on_disk["trackers"]["alpha"]["auc"] < 0.95 or \
-        0.2 < on_disk["trackers"]["alpha"]["auc"] < on_disk["trackers"]["beta"]["auc"] < 0.95
+    assert (
+        0.2 < on_disk["trackers"]["beta"]["auc"] < on_disk["trackers"]["alpha"]["auc"] < 0.95
+        or 0.2 < on_disk["trackers"]["alpha"]["auc"] < on_disk["trackers"]["beta"]["auc"] < 0.95
+    )
     # fps: frames / total time
     assert on_disk["trackers"]["alpha"]["sequences"]["SeqA"]["fps"] == pytest.approx(50.0)
     assert on_disk["trackers"]["alpha"]["fps"] == pytest.approx(50.0)
     assert on_disk["trackers"]["beta"]["sequences"]["SeqA"]["fps"] is None
     # attributes: IV = {SeqA}, OCC = {SeqA, SeqB}
-    assert on_disk["attributes"] == {"IV": {"name": "Illumination Variation", "sequences": ["SeqA"]},
-                                     "OCC": {"name": "Occlusion", "sequences": ["SeqA", "SeqB"]}}
+    assert on_disk["attributes"] == {
+        "IV": {"name": "Illumination Variation", "sequences": ["SeqA"]},
+        "OCC": {"name": "Occlusion", "sequences": ["SeqA", "SeqB"]},
+    }
     occ = on_disk["trackers"]["alpha"]["attributes"]["OCC"]
     e_a = expected_scores(run["preds"]["alpha"]["SeqA"], run["gts"]["SeqA"])
     e_b = expected_scores(run["preds"]["alpha"]["SeqB"], run["gts"]["SeqB"])
@@ -226,9 +251,16 @@ def test_published_curves_are_labelled_and_kept_out_of_the_table(run):
     for subset in ("ALL", "IV", "OCC"):
         d = pub / "OPE" / "FAKE" / "scores_cvpr13"
         d.mkdir(parents=True, exist_ok=True)
-        (d / f"{subset}.json").write_text(json.dumps({
-            "seqs": ["SeqA", "Other"], "overlapScores": [0.9, 0.1],
-            "successRateList": curve.tolist(), "precisionList": prec.tolist()}))
+        (d / f"{subset}.json").write_text(
+            json.dumps(
+                {
+                    "seqs": ["SeqA", "Other"],
+                    "overlapScores": [0.9, 0.1],
+                    "successRateList": curve.tolist(),
+                    "precisionList": prec.tolist(),
+                }
+            )
+        )
     s = build_report(run["dir"], published=pub, benchmark="cvpr13")
     assert s["published"]["trackers"]["FAKE"]["auc"] == pytest.approx(0.5)
     assert s["published"]["label"] == "OTB-2013"

@@ -41,10 +41,10 @@ def make_otb_dataset(root, specs=None, n_frames=20, size=(120, 160), seed=0) -> 
     h, w = size
     for name, spec in specs.items():
         bg = cv2.GaussianBlur(rng.integers(0, 256, (h, w, 3)).astype(np.uint8), (0, 0), 3)
-        bg = cv2.normalize(bg, None, 40, 160, cv2.NORM_MINMAX)
+        bg = cv2.normalize(bg, np.empty_like(bg), 40, 160, cv2.NORM_MINMAX)
         tw, th = spec["side"]
-        tex = rng.integers(0, 256, (th // 4 + 1, tw // 4 + 1, 3)).astype(np.uint8)
-        tex = cv2.resize(tex, (tw, th), interpolation=cv2.INTER_NEAREST)
+        coarse = rng.integers(0, 256, (th // 4 + 1, tw // 4 + 1, 3)).astype(np.uint8)
+        tex = cv2.resize(coarse, (tw, th), interpolation=cv2.INTER_NEAREST)
         tex[..., 0] = np.maximum(tex[..., 0], 150)
         img = root / name / "img"
         img.mkdir(parents=True, exist_ok=True)
@@ -177,8 +177,7 @@ def test_run_writes_the_agreed_layout(dataset, tmp_path, registered):
 
 
 def test_results_equal_driving_the_adapter_directly(dataset, tmp_path):
-    run = run_evaluation(dataset, "opencv-csrt", tmp_path / "run", sequences="SquareB", progress=False,
-                         report=False)
+    run = run_evaluation(dataset, "opencv-csrt", tmp_path / "run", sequences="SquareB", progress=False, report=False)
     seq = open_otb_sequence(dataset / "SquareB")
     t = make_tracker("opencv-csrt", seed=sequence_seed("SquareB"))
     t.init(seq[0], seq.first_box)
@@ -201,8 +200,15 @@ def test_seeds_per_sequence_are_deterministic(dataset, tmp_path, registered):
     assert len(set(seeds[:3])) == 3
     # a base seed in the tracker options shifts every sequence's seed
     Recorder.calls.clear()
-    run_evaluation(dataset, ["test-rec"], tmp_path / "c", sequences=["SquareA"], progress=False, report=False,
-                   tracker_options={"test-rec": {"seed": 7, "step": (0.0, 0.0)}})
+    run_evaluation(
+        dataset,
+        ["test-rec"],
+        tmp_path / "c",
+        sequences=["SquareA"],
+        progress=False,
+        report=False,
+        tracker_options={"test-rec": {"seed": 7, "step": (0.0, 0.0)}},
+    )
     assert Recorder.calls == [(first_box_of(dataset, "SquareA"), sequence_seed("SquareA", 7))]
 
 
@@ -264,8 +270,9 @@ def test_crash_in_one_pair_is_recorded_and_rerun_completes(dataset, tmp_path, re
 
 @pytest.mark.parametrize("workers", [1, 2])
 def test_progress_bars_count_pairs_and_frames(dataset, tmp_path, capsys, workers):
-    run_evaluation(dataset, ["opencv-kcf"], tmp_path / "run", sequences=["SquareA", "SquareC"], report=False,
-                   workers=workers)
+    run_evaluation(
+        dataset, ["opencv-kcf"], tmp_path / "run", sequences=["SquareA", "SquareC"], report=False, workers=workers
+    )
     err = capsys.readouterr().err
     assert "2/2" in err and "40/40" in err and "41/40" not in err
 
@@ -293,8 +300,12 @@ def test_bad_input_is_reported_and_the_rest_runs(bad_dataset, tmp_path):
     assert run.done == [("opencv-kcf", "Good")]
     assert len(result_path(run_dir, "opencv-kcf", "Good").read_text().splitlines()) == 20
     errors = {(e["tracker"], e["sequence"]): e["error"] for e in errors_of(run_dir)}
-    assert set(errors) == {("nonesuch", None), ("opencv-kcf", "SquareA"), ("opencv-kcf", "SquareB"),
-                           ("opencv-kcf", "SquareC")}
+    assert set(errors) == {
+        ("nonesuch", None),
+        ("opencv-kcf", "SquareA"),
+        ("opencv-kcf", "SquareB"),
+        ("opencv-kcf", "SquareC"),
+    }
     assert "0005.png" in errors[("opencv-kcf", "SquareA")]
     assert "groundtruth_rect.txt" in errors[("opencv-kcf", "SquareB")]
     assert "line 3" in errors[("opencv-kcf", "SquareB")]
@@ -308,8 +319,9 @@ def test_bad_input_is_reported_and_the_rest_runs(bad_dataset, tmp_path):
 
 
 def test_unknown_sequence_name_is_an_error_and_others_run(dataset, tmp_path):
-    run = run_evaluation(dataset, ["opencv-kcf"], tmp_path / "run", sequences="squarea,Nowhere",
-                         progress=False, report=False)
+    run = run_evaluation(
+        dataset, ["opencv-kcf"], tmp_path / "run", sequences="squarea,Nowhere", progress=False, report=False
+    )
     assert run.done == [("opencv-kcf", "SquareA")]  # names match case-insensitively
     (err,) = run.errors
     assert err["sequence"] == "Nowhere" and "SquareB" in err["error"]  # lists what exists
@@ -320,8 +332,9 @@ def test_whole_run_problems_raise(dataset, tmp_path):
         run_evaluation(tmp_path / "nope", ["opencv-kcf"], tmp_path / "run", progress=False, report=False)
     with pytest.raises(ValueError, match="no tracker"):
         run_evaluation(dataset, "", tmp_path / "run", progress=False, report=False)
-    run_evaluation(dataset, ["opencv-kcf"], tmp_path / "run", sequences=["SquareA"], progress=False,
-                   report=False, max_frames=3)
+    run_evaluation(
+        dataset, ["opencv-kcf"], tmp_path / "run", sequences=["SquareA"], progress=False, report=False, max_frames=3
+    )
     other = make_otb_dataset(tmp_path / "other", specs={"SquareA": DEFAULT_SPECS["SquareA"]}, n_frames=3)
     with pytest.raises(ValueError, match="another --out"):
         run_evaluation(other, ["opencv-kcf"], tmp_path / "run", progress=False, report=False)
@@ -329,10 +342,16 @@ def test_whole_run_problems_raise(dataset, tmp_path):
 
 def test_run_json_is_merged_on_restart(dataset, tmp_path):
     run_dir = tmp_path / "run"
-    run_evaluation(dataset, ["opencv-kcf"], run_dir, sequences=["SquareA"], progress=False, report=False,
-                   max_frames=4)
-    run_evaluation(dataset, ["opencv-mosse", "opencv-kcf"], run_dir, sequences=["SquareC"], progress=False,
-                   report=False, max_frames=4)
+    run_evaluation(dataset, ["opencv-kcf"], run_dir, sequences=["SquareA"], progress=False, report=False, max_frames=4)
+    run_evaluation(
+        dataset,
+        ["opencv-mosse", "opencv-kcf"],
+        run_dir,
+        sequences=["SquareC"],
+        progress=False,
+        report=False,
+        max_frames=4,
+    )
     info = json.loads((run_dir / "run.json").read_text())
     assert info["trackers"] == ["opencv-kcf", "opencv-mosse"]
     assert info["sequences"] == ["SquareA", "SquareC"]
@@ -368,23 +387,26 @@ def test_process_pool_equals_sequential(dataset, tmp_path, sequential_run):
 def cluster():
     """A real Dask cluster of two worker processes (one thread each)."""
     distributed = pytest.importorskip("distributed")
-    with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None,
-                                  silence_logs=40) as c:
+    with distributed.LocalCluster(
+        n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None, silence_logs=40
+    ) as c:
         yield c
 
 
 def test_dask_local_cluster_equals_sequential(dataset, tmp_path, sequential_run, cluster):
     import distributed
 
-    run = run_evaluation(dataset, PARALLEL_TRACKERS, tmp_path / "run", scheduler=cluster.scheduler_address,
-                         progress=False, report=False)
+    run = run_evaluation(
+        dataset, PARALLEL_TRACKERS, tmp_path / "run", scheduler=cluster.scheduler_address, progress=False, report=False
+    )
     assert run.ok and len(run.done) == 12
     assert read_result_texts(tmp_path / "run") == sequential_run
     # errors travel back from the cluster too, and the rest is skipped on restart
     result_path(tmp_path / "run", "opencv-kcf", "SquareC").unlink()
     with distributed.Client(cluster) as client:
-        run = run_evaluation(dataset, ["opencv-kcf", "nonesuch"], tmp_path / "run", scheduler=client,
-                             progress=False, report=False)
+        run = run_evaluation(
+            dataset, ["opencv-kcf", "nonesuch"], tmp_path / "run", scheduler=client, progress=False, report=False
+        )
     assert run.done == [("opencv-kcf", "SquareC")] and len(run.skipped) == 2
     assert run.failed == [("nonesuch", None)]
     assert read_result_texts(tmp_path / "run") == sequential_run
@@ -422,5 +444,11 @@ def test_unreachable_scheduler_is_a_clear_error(dataset, tmp_path):
         port = s.getsockname()[1]
     with dask.config.set({"distributed.comm.timeouts.connect": "2s"}):
         with pytest.raises(OSError, match=f"cannot connect to the Dask scheduler at tcp://127.0.0.1:{port}"):
-            run_evaluation(dataset, ["opencv-kcf"], tmp_path / "run", scheduler=f"tcp://127.0.0.1:{port}",
-                           progress=False, report=False)
+            run_evaluation(
+                dataset,
+                ["opencv-kcf"],
+                tmp_path / "run",
+                scheduler=f"tcp://127.0.0.1:{port}",
+                progress=False,
+                report=False,
+            )

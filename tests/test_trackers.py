@@ -13,10 +13,8 @@ import cv2
 import numpy as np
 import pytest
 
-from smtmvt.evaluation import trackers as tr
 from smtmvt.evaluation.trackers import (
     EvalTracker,
-    OpenCVTracker,
     UnknownTrackerError,
     available_trackers,
     covering_rect,

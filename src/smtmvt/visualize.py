@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import cv2
 import numpy as np
@@ -44,8 +45,8 @@ class VideoSink:
     def __init__(self, path, fps: float = 20.0):
         self.path = Path(path)
         self.fps = fps
-        self._writer = None
-        self._gif_frames = []
+        self._writer: cv2.VideoWriter | None = None
+        self._gif_frames: list[Any] = []  # (H, W, 3) uint8 RGB frames
         self.path.parent.mkdir(parents=True, exist_ok=True)
 
     def add(self, frame_rgb: np.ndarray) -> None:
@@ -54,7 +55,7 @@ class VideoSink:
             self._gif_frames.append(img)
             return
         if self._writer is None:
-            fourcc = cv2.VideoWriter_fourcc(*("mp4v" if self.path.suffix.lower() == ".mp4" else "MJPG"))
+            fourcc = cv2.VideoWriter.fourcc(*("mp4v" if self.path.suffix.lower() == ".mp4" else "MJPG"))
             h, w = img.shape[:2]
             self._writer = cv2.VideoWriter(str(self.path), fourcc, self.fps, (w, h))
             if not self._writer.isOpened():

@@ -47,8 +47,9 @@ def run_demo(args) -> int:
     elapsed = 0.0
     run = track_frames(tracker, seq.frames, seq.groundtruth[0])
     with VideoSink(out / "demo.gif", fps=15) as sink:
-        for i, (frame, box, seconds) in enumerate(tqdm(run, total=len(seq), unit="frame", desc="demo",
-                                                        disable=args.quiet)):
+        for i, (frame, box, seconds) in enumerate(
+            tqdm(run, total=len(seq), unit="frame", desc="demo", disable=args.quiet)
+        ):
             boxes[i] = box
             elapsed += seconds
             img = draw_box(frame, seq.groundtruth[i], (0, 255, 0), thickness=1)
@@ -70,9 +71,15 @@ def run_demo(args) -> int:
     fig.savefig(out / "overlap.png", dpi=120)
     plt.close(fig)
 
-    summary = {"frames": len(seq), "mean_overlap": float(overlaps.mean()),
-               "fps": len(seq) / elapsed, "events": seq.events}
+    summary = {
+        "frames": len(seq),
+        "mean_overlap": float(overlaps.mean()),
+        "fps": len(seq) / elapsed,
+        "events": seq.events,
+    }
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
-    print(f"demo: {len(seq)} frames, mean overlap {overlaps.mean():.3f}, "
-          f"{len(seq) / elapsed:.1f} fps; wrote {out}/demo.gif, overlap.png, demo_result.txt")
+    print(
+        f"demo: {len(seq)} frames, mean overlap {overlaps.mean():.3f}, "
+        f"{len(seq) / elapsed:.1f} fps; wrote {out}/demo.gif, overlap.png, demo_result.txt"
+    )
     return 0

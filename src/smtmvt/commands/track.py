@@ -33,9 +33,13 @@ def add_parser(sub) -> None:
     )
     p.add_argument("source", help="OTB folder, video file, image folder or glob pattern")
     p.add_argument("--out", required=True, help="result file (OTB format, 1-based x,y,w,h per line)")
-    p.add_argument("--box", type=parse_box, default=None,
-                   help="initial box x,y,w,h in 0-based pixels (as in the Python API); "
-                   "default: the first ground-truth box of SOURCE")
+    p.add_argument(
+        "--box",
+        type=parse_box,
+        default=None,
+        help="initial box x,y,w,h in 0-based pixels (as in the Python API); "
+        "default: the first ground-truth box of SOURCE",
+    )
     p.add_argument("--groundtruth", default=None, help="ground-truth file for SOURCE (OTB format)")
     p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same boxes)")
     p.add_argument("--max-frames", type=int, default=None, help="stop after this many frames")

@@ -110,7 +110,7 @@ def open_dataset(root, sequences=None, *, on_error="raise") -> list:
         if isinstance(sequences, str):
             sequences = re.split(r"[,\s]+", sequences.strip())
         entries = _select(entries, sequences, root)
-    items = []
+    items: list = []
     for name, folder, target in entries:
         try:
             if not groundtruth_targets(folder):

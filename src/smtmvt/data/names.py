@@ -41,4 +41,6 @@ def lookup(mapping: Mapping, name: str):
         return mapping[hits[0]]
     if hits:
         raise ValueError(f"name {name!r} is ambiguous: matches {sorted(hits)} (differ only in case)")
-    raise KeyError(f"{name!r} not found (case-insensitive); available: {', '.join(sorted(map(str, mapping), key=natural_key))}")
+    raise KeyError(
+        f"{name!r} not found (case-insensitive); available: {', '.join(sorted(map(str, mapping), key=natural_key))}"
+    )

@@ -133,5 +133,5 @@ class VideoSequence(Sequence):
     def __del__(self):
         try:
             self.close()
-        except Exception:  # pragma: no cover - interpreter shutdown
+        except Exception:  # noqa: BLE001  # pragma: no cover - interpreter shutdown
             pass

@@ -42,15 +42,39 @@ from .trackers import (
 
 #: Names re-exported lazily from the scoring/report modules: ``name -> module``.
 _LAZY = {
-    **{name: "metrics" for name in (
-        "SUCCESS_THRESHOLDS", "PRECISION_THRESHOLDS", "INVALID_MODES", "overlap_ratio", "center_error",
-        "success_curve", "precision_curve", "valid_groundtruth", "repair_predictions", "SequenceScore",
-        "score_sequence", "Aggregate", "aggregate")},
-    **{name: "published" for name in (
-        "load_published_scores", "published_trackers", "import_results", "import_into_run",
-        "load_attribute_table", "read_otb_mat", "read_otb_json", "ImportedResult")},
-    **{name: "report" for name in ("build_report", "load_groundtruth_source")},
-    **{name: "plots" for name in ("plot_curves", "select_curves", "Curve")},
+    **dict.fromkeys(
+        (
+            "SUCCESS_THRESHOLDS",
+            "PRECISION_THRESHOLDS",
+            "INVALID_MODES",
+            "overlap_ratio",
+            "center_error",
+            "success_curve",
+            "precision_curve",
+            "valid_groundtruth",
+            "repair_predictions",
+            "SequenceScore",
+            "score_sequence",
+            "Aggregate",
+            "aggregate",
+        ),
+        "metrics",
+    ),
+    **dict.fromkeys(
+        (
+            "load_published_scores",
+            "published_trackers",
+            "import_results",
+            "import_into_run",
+            "load_attribute_table",
+            "read_otb_mat",
+            "read_otb_json",
+            "ImportedResult",
+        ),
+        "published",
+    ),
+    **dict.fromkeys(("build_report", "load_groundtruth_source"), "report"),
+    **dict.fromkeys(("plot_curves", "select_curves", "Curve"), "plots"),
 }
 
 __all__ = [

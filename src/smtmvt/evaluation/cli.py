@@ -43,21 +43,40 @@ def add_parsers(subparsers) -> None:
             "unknown (the rest ran; see RUN_DIR/errors.json); 2: the command itself failed."
         ),
     )
-    p.add_argument("--dataset", required=True, metavar="DIR", help="folder of OTB sequences (<Seq>/img, groundtruth_rect.txt)")
-    p.add_argument("--trackers", required=True, metavar="NAMES", help=f"comma-separated tracker names; available: {names}")
+    p.add_argument(
+        "--dataset", required=True, metavar="DIR", help="folder of OTB sequences (<Seq>/img, groundtruth_rect.txt)"
+    )
+    p.add_argument(
+        "--trackers", required=True, metavar="NAMES", help=f"comma-separated tracker names; available: {names}"
+    )
     p.add_argument("--out", required=True, metavar="RUN_DIR", help="run folder (created, or resumed)")
-    p.add_argument("--sequences", metavar="NAMES", help="comma-separated sequence names (default: all; case-insensitive)")
+    p.add_argument(
+        "--sequences", metavar="NAMES", help="comma-separated sequence names (default: all; case-insensitive)"
+    )
     p.add_argument("--workers", type=int, default=1, metavar="N", help="local worker processes (default 1)")
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="Dask scheduler address (tcp://host:8786): run the pairs on that cluster; "
-                        "workers must see the dataset at the same path")
-    p.add_argument("--max-frames", type=int, metavar="N",
-                   help="run only the first N frames of each sequence (quick checks; NOT OTB-compliant)")
-    p.add_argument("--tracker-option", action="append", default=[], metavar="TRACKER:KEY=VALUE",
-                   help="option for one tracker's constructor, repeatable "
-                        "(smtmvt:n_particles=200, opencv-kcf:detect_thresh=0.2)")
+    p.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="Dask scheduler address (tcp://host:8786): run the pairs on that cluster; "
+        "workers must see the dataset at the same path",
+    )
+    p.add_argument(
+        "--max-frames",
+        type=int,
+        metavar="N",
+        help="run only the first N frames of each sequence (quick checks; NOT OTB-compliant)",
+    )
+    p.add_argument(
+        "--tracker-option",
+        action="append",
+        default=[],
+        metavar="TRACKER:KEY=VALUE",
+        help="option for one tracker's constructor, repeatable (smtmvt:n_particles=200, opencv-kcf:detect_thresh=0.2)",
+    )
     p.add_argument("--attributes", metavar="PATH", help="attribute table for the report (stored in run.json)")
-    p.add_argument("--published", metavar="DIR", help="published OTB results folder for the report (stored in run.json)")
+    p.add_argument(
+        "--published", metavar="DIR", help="published OTB results folder for the report (stored in run.json)"
+    )
     p.add_argument("--no-report", action="store_true", help="do not build RUN_DIR/report at the end")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=cmd_evaluate)
@@ -66,20 +85,33 @@ def add_parsers(subparsers) -> None:
         "report",
         help="rebuild RUN_DIR/report from stored results (nothing is re-run)",
         description="Score the stored results of a run folder and write RUN_DIR/report/ "
-                    "(table.md, table.csv, success/precision plots, summary.json, index.html).",
+        "(table.md, table.csv, success/precision plots, summary.json, index.html).",
     )
     r.add_argument("run_dir", metavar="RUN_DIR")
     r.add_argument("--dataset", metavar="DIR", help="OTB dataset (default: the one in RUN_DIR/run.json)")
     r.add_argument("--published", metavar="DIR", help="published OTB results folder (curves drawn beside ours)")
     r.add_argument("--attributes", metavar="PATH", help="attribute table or anno/att folder")
-    r.add_argument("--import", dest="imports", action="append", default=[], metavar="PATH[:NAME]",
-                   help="import per-frame results (a tracker's folder or file) into the run "
-                        "first, as tracker NAME; repeatable")
-    r.add_argument("--benchmark", default="tb100", choices=["tb100", "cvpr13", "tb50"],
-                   help="published score set to draw (default tb100)")
+    r.add_argument(
+        "--import",
+        dest="imports",
+        action="append",
+        default=[],
+        metavar="PATH[:NAME]",
+        help="import per-frame results (a tracker's folder or file) into the run first, as tracker NAME; repeatable",
+    )
+    r.add_argument(
+        "--benchmark",
+        default="tb100",
+        choices=["tb100", "cvpr13", "tb50"],
+        help="published score set to draw (default tb100)",
+    )
     r.add_argument("--top", type=int, default=10, metavar="N", help="curves per plot (default 10)")
-    r.add_argument("--invalid", default="otb", choices=["otb", "pytracking", "fail"],
-                   help="invalid ground-truth frames: otb (MATLAB toolkit, default), pytracking, fail")
+    r.add_argument(
+        "--invalid",
+        default="otb",
+        choices=["otb", "pytracking", "fail"],
+        help="invalid ground-truth frames: otb (MATLAB toolkit, default), pytracking, fail",
+    )
     r.set_defaults(func=cmd_report)
 
 
@@ -115,12 +147,15 @@ def _print_report(summary, run_dir: Path) -> None:
     report_dir = run_dir / "report"
     rows = []
     for name, t in (summary or {}).get("trackers", {}).items():
+
         def fmt(v, spec):
             return "-" if v is None else format(v, spec)
 
-        rows.append(f"  {name:<22} AUC {fmt(t.get('auc'), '.3f')}  precision@20 "
-                    f"{fmt(t.get('precision20'), '.3f')}  FPS {fmt(t.get('fps'), '.1f')}  "
-                    f"({t.get('n_sequences', '?')} sequences)")
+        rows.append(
+            f"  {name:<22} AUC {fmt(t.get('auc'), '.3f')}  precision@20 "
+            f"{fmt(t.get('precision20'), '.3f')}  FPS {fmt(t.get('fps'), '.1f')}  "
+            f"({t.get('n_sequences', '?')} sequences)"
+        )
     if rows:
         print("\n".join(rows))
     for name in ("table.md", "index.html"):
@@ -145,8 +180,10 @@ def cmd_evaluate(args) -> int:
         attributes=args.attributes,
         published=args.published,
     )
-    print(f"evaluate: {len(run.done)} pair(s) run ({run.frames} frames), {len(run.skipped)} already "
-          f"done, {len(run.errors)} error(s); {run.seconds:.1f} s")
+    print(
+        f"evaluate: {len(run.done)} pair(s) run ({run.frames} frames), {len(run.skipped)} already "
+        f"done, {len(run.errors)} error(s); {run.seconds:.1f} s"
+    )
     for note in run.notes:
         print(f"note: {note}")
     if args.max_frames:

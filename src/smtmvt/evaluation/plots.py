@@ -12,9 +12,9 @@ display and no global pyplot state are involved.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Sequence
 
 import numpy as np
 
@@ -29,12 +29,34 @@ TITLES = {
 
 # MATLAB toolkit's plotDrawStyle colours (first ten), then matplotlib's cycle
 _COLORS = [
-    "#ff0000", "#00ff00", "#0000ff", "#000000", "#ff00ff",
-    "#00ffff", "#888888", "#884400", "#880088", "#ff8800",
-    "#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
+    "#ff0000",
+    "#00ff00",
+    "#0000ff",
+    "#000000",
+    "#ff00ff",
+    "#00ffff",
+    "#888888",
+    "#884400",
+    "#880088",
+    "#ff8800",
+    "#1f77b4",
+    "#2ca02c",
+    "#d62728",
+    "#9467bd",
+    "#8c564b",
 ]
-_PUBLISHED_COLORS = ["#7f7f7f", "#bcbd22", "#17becf", "#8c564b", "#e377c2", "#9467bd", "#aec7e8",
-                     "#ffbb78", "#98df8a", "#c5b0d5"]
+_PUBLISHED_COLORS = [
+    "#7f7f7f",
+    "#bcbd22",
+    "#17becf",
+    "#8c564b",
+    "#e377c2",
+    "#9467bd",
+    "#aec7e8",
+    "#ffbb78",
+    "#98df8a",
+    "#c5b0d5",
+]
 
 
 @dataclass
@@ -60,8 +82,14 @@ def select_curves(ours: Sequence[Curve], published: Sequence[Curve] = (), top: i
     return sorted(list(ours) + list(pub), key=lambda c: -c.score)
 
 
-def plot_curves(kind: str, curves: Sequence[Curve], out_stem, subtitle: str | None = None,
-                formats: Sequence[str] = ("png", "svg"), dpi: int = 120) -> list[Path]:
+def plot_curves(
+    kind: str,
+    curves: Sequence[Curve],
+    out_stem,
+    subtitle: str | None = None,
+    formats: Sequence[str] = ("png", "svg"),
+    dpi: int = 120,
+) -> list[Path]:
     """Draw ``curves`` (already selected) and save ``<out_stem>.<fmt>`` for each format.
 
     ``kind`` is ``"success"`` or ``"precision"``. Returns the written paths.

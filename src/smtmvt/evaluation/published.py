@@ -35,9 +35,9 @@ from __future__ import annotations
 import json
 import os
 import re
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterable, Mapping
 
 import numpy as np
 
@@ -70,9 +70,19 @@ BENCHMARKS = {
     "tb100": ("tb100", "OTB-100"),
 }
 _BENCHMARK_ALIASES = {
-    "cvpr13": "cvpr13", "cvpr2013": "cvpr13", "otb2013": "cvpr13", "otb-2013": "cvpr13", "otb13": "cvpr13",
-    "tb50": "tb50", "otb50": "tb50", "tb-50": "tb50",
-    "tb100": "tb100", "otb100": "tb100", "otb-100": "tb100", "otb2015": "tb100", "otb-2015": "tb100",
+    "cvpr13": "cvpr13",
+    "cvpr2013": "cvpr13",
+    "otb2013": "cvpr13",
+    "otb-2013": "cvpr13",
+    "otb13": "cvpr13",
+    "tb50": "tb50",
+    "otb50": "tb50",
+    "tb-50": "tb50",
+    "tb100": "tb100",
+    "otb100": "tb100",
+    "otb-100": "tb100",
+    "otb2015": "tb100",
+    "otb-2015": "tb100",
 }
 # names that mean the same sequence once case and separators are normalised
 _NAME_ALIASES = {"human4-2": "human4"}
@@ -110,14 +120,16 @@ def read_box_file(path, ncols: int = 4) -> np.ndarray:
     """
     path = Path(path)
     rows = []
-    with open(path, "r", encoding="utf-8", errors="replace") as fh:
+    with open(path, encoding="utf-8", errors="replace") as fh:
         for lineno, line in enumerate(fh, 1):
             text = line.strip()
             if not text:
                 continue
             parts = [p for p in _SPLIT.split(text) if p]
             if len(parts) != ncols:
-                raise ValueError(f"{path}:{lineno}: expected {ncols} numbers (x,y,w,h), got {len(parts)}: {text[:60]!r}")
+                raise ValueError(
+                    f"{path}:{lineno}: expected {ncols} numbers (x,y,w,h), got {len(parts)}: {text[:60]!r}"
+                )
             try:
                 rows.append([float(p) for p in parts])
             except ValueError:
@@ -162,8 +174,9 @@ def published_trackers(otb_results_dir, benchmark: str = "tb100") -> list[str]:
     return sorted((p.name for p in ope.iterdir() if (p / sub).is_dir()), key=str.lower)
 
 
-def load_published_scores(otb_results_dir, benchmark: str = "tb100", subset: str = "ALL",
-                          trackers: Iterable[str] | None = None) -> dict:
+def load_published_scores(
+    otb_results_dir, benchmark: str = "tb100", subset: str = "ALL", trackers: Iterable[str] | None = None
+) -> dict:
     """Published OPE scores of every tracker (or ``trackers``) on ``benchmark`` / ``subset``.
 
     Returns ``{tracker: {"success": (21,), "precision": (51,), "auc": float,
@@ -184,7 +197,7 @@ def load_published_scores(otb_results_dir, benchmark: str = "tb100", subset: str
         if not path.is_file():
             continue
         try:
-            with open(path, "r", encoding="utf-8") as fh:
+            with open(path, encoding="utf-8") as fh:
                 data = json.load(fh)
             success = np.asarray(data["successRateList"], dtype=np.float64)
             precision = np.asarray(data["precisionList"], dtype=np.float64)
@@ -193,8 +206,9 @@ def load_published_scores(otb_results_dir, benchmark: str = "tb100", subset: str
         except (OSError, ValueError, KeyError, TypeError) as exc:
             raise ValueError(f"{path}: not a tracker_benchmark score file ({exc})") from None
         if success.shape != (21,) or precision.shape != (51,):
-            raise ValueError(f"{path}: expected 21 success and 51 precision values, "
-                             f"got {success.shape} and {precision.shape}")
+            raise ValueError(
+                f"{path}: expected 21 success and 51 precision values, got {success.shape} and {precision.shape}"
+            )
         out[name] = {
             "success": success,
             "precision": precision,
@@ -245,9 +259,11 @@ def ivt_affine_to_rect(params, tmplsize) -> np.ndarray:
     """
     p = np.asarray(params, dtype=np.float64).reshape(-1, 6)
     w, h = (float(v) for v in np.asarray(tmplsize, dtype=np.float64).ravel()[:2])
+
     # M = [p1 p3 p4; p2 p5 p6] applied to (1, u, v)
     def corner(u, v):
         return p[:, 0] + p[:, 2] * u + p[:, 3] * v, p[:, 1] + p[:, 4] * u + p[:, 5] * v
+
     x1, y1 = corner(-w / 2, -h / 2)
     x3, y3 = corner(w / 2, h / 2)
     x1, y1, x3, y3 = np.floor(x1), np.floor(y1), np.floor(x3), np.floor(y3)
@@ -290,7 +306,7 @@ def read_otb_mat(path, tracker: str | None = None, sequence: str | None = None) 
     sequence = sequence or seq_guess
     try:
         mat = loadmat(str(path))
-    except Exception as exc:  # scipy raises several types for corrupt files
+    except Exception as exc:  # noqa: BLE001 - scipy raises several types for corrupt files
         raise ValueError(f"{path}: cannot read MATLAB file ({exc})") from None
     keys = [k for k in mat if not k.startswith("__")]
     common = dict(tracker=tracker, sequence=sequence, source=str(path), format="otb-mat")
@@ -306,7 +322,9 @@ def read_otb_mat(path, tracker: str | None = None, sequence: str | None = None) 
         if "res" not in fields:
             raise ValueError(f"{path}: results struct has no 'res' field")
         res = np.asarray(_unwrap(fields["res"]), dtype=np.float64)
-        rtype = str(np.asarray(_unwrap(fields.get("type", np.array(["rect"])))).ravel()[0]) if "type" in fields else "rect"
+        rtype = (
+            str(np.asarray(_unwrap(fields.get("type", np.array(["rect"])))).ravel()[0]) if "type" in fields else "rect"
+        )
         if rtype == "rect":
             boxes = res.reshape(-1, 4) if res.size else np.zeros((0, 4))
         elif rtype == "ivtAff":
@@ -317,14 +335,18 @@ def read_otb_mat(path, tracker: str | None = None, sequence: str | None = None) 
         else:
             raise ValueError(f"{path}: unsupported result type {rtype!r} (supported: rect, ivtAff)")
         return ImportedResult(
-            boxes=boxes, result_type=rtype,
+            boxes=boxes,
+            result_type=rtype,
             start_frame=_scalar(fields.get("startFrame"), int) if "startFrame" in fields else None,
             anno_begin=_scalar(fields.get("annoBegin"), int) if "annoBegin" in fields else None,
             fps=_scalar(fields.get("fps"), float) if "fps" in fields else None,
             **common,
         )
-    numeric = [k for k in keys if isinstance(mat[k], np.ndarray) and mat[k].dtype != object
-               and mat[k].ndim == 2 and mat[k].shape[1] == 4]
+    numeric = [
+        k
+        for k in keys
+        if isinstance(mat[k], np.ndarray) and mat[k].dtype != object and mat[k].ndim == 2 and mat[k].shape[1] == 4
+    ]
     if len(numeric) == 1:
         return ImportedResult(boxes=np.asarray(mat[numeric[0]], dtype=np.float64), **common)
     raise ValueError(f"{path}: no 'results' struct and no single (n, 4) array (variables: {', '.join(keys) or 'none'})")
@@ -339,7 +361,7 @@ def read_otb_json(path, tracker: str | None = None) -> ImportedResult:
     """Read a tracker_benchmark per-frame result JSON (``OPE/<TRACKER>/<Seq>.json``)."""
     path = Path(path)
     try:
-        with open(path, "r", encoding="utf-8") as fh:
+        with open(path, encoding="utf-8") as fh:
             data = json.load(fh)
     except (OSError, ValueError) as exc:
         raise ValueError(f"{path}: not a JSON result file ({exc})") from None
@@ -358,7 +380,10 @@ def read_otb_json(path, tracker: str | None = None) -> ImportedResult:
     return ImportedResult(
         tracker=tracker or rec.get("tracker") or path.parent.name,
         sequence=rec.get("seqName") or path.stem,
-        boxes=boxes, source=str(path), format="otb-json", result_type=rtype,
+        boxes=boxes,
+        source=str(path),
+        format="otb-json",
+        result_type=rtype,
         start_frame=int(start) if start is not None else None,
         anno_begin=None,  # unknown in this format; resolved against the annotation length
         fps=float(rec["fps"]) if rec.get("fps") is not None else None,
@@ -374,8 +399,9 @@ def _read_text_result(path: Path, tracker: str) -> ImportedResult:
             times = np.loadtxt(tfile, ndmin=1, dtype=np.float64)
         except ValueError:
             times = None
-    return ImportedResult(tracker=tracker, sequence=path.stem, boxes=boxes, source=str(path),
-                          format="text", times=times)
+    return ImportedResult(
+        tracker=tracker, sequence=path.stem, boxes=boxes, source=str(path), format="text", times=times
+    )
 
 
 def _detect_format(path: Path) -> str:
@@ -403,9 +429,13 @@ def _detect_format(path: Path) -> str:
     raise ValueError(f"{path}: found no .mat, .json or .txt result files")
 
 
-def import_results(path, fmt: str = "auto", tracker_name: str | None = None,
-                   trackers: Iterable[str] | None = None,
-                   sequences: Iterable[str] | None = None) -> dict[str, dict[str, ImportedResult]]:
+def import_results(
+    path,
+    fmt: str = "auto",
+    tracker_name: str | None = None,
+    trackers: Iterable[str] | None = None,
+    sequences: Iterable[str] | None = None,
+) -> dict[str, dict[str, ImportedResult]]:
     """Read foreign per-frame results into ``{tracker: {sequence: ImportedResult}}``.
 
     ``path`` may be:
@@ -449,8 +479,11 @@ def import_results(path, fmt: str = "auto", tracker_name: str | None = None,
                 continue
             items.append(read_otb_mat(f))
     elif fmt == "otb-json":
-        files = [path] if path.is_file() else sorted(
-            f for f in path.rglob("*.json") if not any(part.startswith("scores_") for part in f.parts))
+        files = (
+            [path]
+            if path.is_file()
+            else sorted(f for f in path.rglob("*.json") if not any(part.startswith("scores_") for part in f.parts))
+        )
         for f in files:
             trk = f.parent.name
             if want_trk is not None and trk.lower() not in want_trk:
@@ -478,9 +511,12 @@ def import_results(path, fmt: str = "auto", tracker_name: str | None = None,
         out.setdefault(item.tracker, {})[item.sequence] = item
     if tracker_name is not None:
         if len(out) > 1:
-            raise ValueError(f"{path}: holds {len(out)} trackers ({', '.join(sorted(out))}); "
-                             "pick one with trackers=[...] before renaming it")
-        out = {tracker_name: {s: _renamed(r, tracker_name) for s, r in v.items()} for v in out.values()}
+            raise ValueError(
+                f"{path}: holds {len(out)} trackers ({', '.join(sorted(out))}); "
+                "pick one with trackers=[...] before renaming it"
+            )
+        only = next(iter(out.values()), {})
+        out = {tracker_name: {s: _renamed(r, tracker_name) for s, r in only.items()}} if out else {}
     return out
 
 
@@ -520,9 +556,14 @@ def _run_sequence_names(meta: dict) -> dict[str, str]:
     return names
 
 
-def import_into_run(run_dir, source, tracker_name: str | None = None, fmt: str = "auto",
-                    trackers: Iterable[str] | None = None,
-                    sequences: Iterable[str] | None = None) -> dict[str, list[str]]:
+def import_into_run(
+    run_dir,
+    source,
+    tracker_name: str | None = None,
+    fmt: str = "auto",
+    trackers: Iterable[str] | None = None,
+    sequences: Iterable[str] | None = None,
+) -> dict[str, list[str]]:
     """Import foreign results into ``RUN_DIR/results/<tracker>/<seq>.txt`` so that the report
     scores them with our metrics on our sequences, beside our own runs.
 

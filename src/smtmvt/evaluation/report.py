@@ -30,13 +30,13 @@ import io
 import json
 import os
 import warnings
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterable, Sequence
 
 import numpy as np
 
-from .metrics import SequenceScore, aggregate, score_sequence, _check_mode
+from .metrics import SequenceScore, _check_mode, aggregate, score_sequence
 from .plots import Curve, plot_curves, select_curves
 from .published import (
     ATTRIBUTE_NAMES,
@@ -161,8 +161,9 @@ def _read_json(path: Path, errors: list, what: str):
     try:
         return json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError) as exc:
-        errors.append({"tracker": None, "sequence": None, "error": f"{path}: unreadable {what} ({exc})",
-                       "stage": "report"})
+        errors.append(
+            {"tracker": None, "sequence": None, "error": f"{path}: unreadable {what} ({exc})", "stage": "report"}
+        )
         return None
 
 
@@ -212,8 +213,7 @@ def _attribute_source(attributes, meta: dict, published, gt: _GroundTruth, error
                 if cand is attributes:
                     raise
                 if cand is not published:
-                    errors.append({"tracker": None, "sequence": None, "stage": "report",
-                                   "error": f"attributes: {exc}"})
+                    errors.append({"tracker": None, "sequence": None, "stage": "report", "error": f"attributes: {exc}"})
     # next to the dataset: anno/att or att/
     for cand in (gt.root / "anno" / "att", gt.root / "att", gt.root.parent / "anno" / "att"):
         if cand.is_dir():
@@ -227,9 +227,19 @@ def _attribute_source(attributes, meta: dict, published, gt: _GroundTruth, error
 # --------------------------------------------------------------------------- main entry
 
 
-def build_report(run_dir, dataset=None, published=None, benchmark: str = "tb100", attributes=None,
-                 top: int = 10, invalid: str = "otb", *, trackers: Sequence[str] | None = None,
-                 sequences: Sequence[str] | None = None, formats: Sequence[str] = ("png", "svg")) -> dict:
+def build_report(
+    run_dir,
+    dataset=None,
+    published=None,
+    benchmark: str = "tb100",
+    attributes=None,
+    top: int = 10,
+    invalid: str = "otb",
+    *,
+    trackers: Sequence[str] | None = None,
+    sequences: Sequence[str] | None = None,
+    formats: Sequence[str] = ("png", "svg"),
+) -> dict:
     """Score the stored results of ``run_dir`` and write ``run_dir/report/``. Returns the summary.
 
     Parameters
@@ -300,14 +310,19 @@ def build_report(run_dir, dataset=None, published=None, benchmark: str = "tb100"
     run_error_pairs = set()
     for e in run_errors if isinstance(run_errors, list) else []:
         if isinstance(e, dict):
-            entry = {"tracker": e.get("tracker"), "sequence": e.get("sequence"),
-                     "error": str(e.get("error", "")), "stage": "run"}
+            entry = {
+                "tracker": e.get("tracker"),
+                "sequence": e.get("sequence"),
+                "error": str(e.get("error", "")),
+                "stage": "run",
+            }
             errors.append(entry)
             run_error_pairs.add((str(entry["tracker"]), canonical_name(entry["sequence"] or "")))
 
     results_dir = run_dir / "results"
-    found_trackers = sorted((p.name for p in results_dir.iterdir() if p.is_dir()), key=str.lower) \
-        if results_dir.is_dir() else []
+    found_trackers = (
+        sorted((p.name for p in results_dir.iterdir() if p.is_dir()), key=str.lower) if results_dir.is_dir() else []
+    )
     if trackers is None:
         trackers = _unique(list(meta.get("trackers") or []) + found_trackers)
     trackers = list(trackers)
@@ -354,11 +369,13 @@ def build_report(run_dir, dataset=None, published=None, benchmark: str = "tb100"
                 if len(boxes) < len(gt):
                     raise ValueError(
                         f"{_rel(path, run_dir)}: result file shorter than its sequence: {len(boxes)} lines, "
-                        f"sequence {seq} has {len(gt)} frames (no box from line {len(boxes) + 1} on)")
+                        f"sequence {seq} has {len(gt)} frames (no box from line {len(boxes) + 1} on)"
+                    )
                 if len(boxes) > len(gt):
                     raise ValueError(
                         f"{_rel(path, run_dir)}: result file longer than its sequence: {len(boxes)} lines, "
-                        f"sequence {seq} has {len(gt)} frames (line {len(gt) + 1} and after have no frame)")
+                        f"sequence {seq} has {len(gt)} frames (line {len(gt) + 1} and after have no frame)"
+                    )
                 score = score_sequence(boxes, gt, invalid=invalid)
             except (OSError, ValueError) as exc:
                 msg = str(exc)
@@ -389,21 +406,36 @@ def build_report(run_dir, dataset=None, published=None, benchmark: str = "tb100"
         got = pairs[t]
         imported = (results_dir / t / "import.json").is_file()
         entry: dict = {
-            "auc": None, "precision20": None, "avg_overlap": None, "fps": None,
-            "n_sequences": len(got), "success": None, "precision": None, "imported": imported,
-            "sequences": {}, "attributes": {}, "errors": dict(pair_errors[t]),
+            "auc": None,
+            "precision20": None,
+            "avg_overlap": None,
+            "fps": None,
+            "n_sequences": len(got),
+            "success": None,
+            "precision": None,
+            "imported": imported,
+            "sequences": {},
+            "attributes": {},
+            "errors": dict(pair_errors[t]),
         }
         for seq, p in got.items():
             entry["sequences"][seq] = {
-                "avg_overlap": float(p.score.avg_overlap), "auc": float(p.score.auc),
-                "precision20": float(p.score.precision20), "fps": _round(p.fps),
-                "n_frames": int(p.score.n_frames), "n_valid": int(p.score.n_valid),
+                "avg_overlap": float(p.score.avg_overlap),
+                "auc": float(p.score.auc),
+                "precision20": float(p.score.precision20),
+                "fps": _round(p.fps),
+                "n_frames": int(p.score.n_frames),
+                "n_valid": int(p.score.n_valid),
             }
         if got:
             agg = aggregate([p.score for p in got.values()])
-            entry.update(auc=agg.auc, precision20=agg.precision20,
-                         avg_overlap=float(np.mean([p.score.avg_overlap for p in got.values()])),
-                         success=agg.success.tolist(), precision=agg.precision.tolist())
+            entry.update(
+                auc=agg.auc,
+                precision20=agg.precision20,
+                avg_overlap=float(np.mean([p.score.avg_overlap for p in got.values()])),
+                success=agg.success.tolist(),
+                precision=agg.precision.tolist(),
+            )
             timed = [p for p in got.values() if p.fps is not None]
             if timed:
                 entry["fps"] = sum(p.frames_timed for p in timed) / sum(p.seconds for p in timed)
@@ -411,9 +443,13 @@ def build_report(run_dir, dataset=None, published=None, benchmark: str = "tb100"
                 sub = [got[s].score for s in members if s in got]
                 if sub:
                     sa = aggregate(sub)
-                    entry["attributes"][a] = {"auc": sa.auc, "precision20": sa.precision20,
-                                              "n_sequences": len(sub), "success": sa.success.tolist(),
-                                              "precision": sa.precision.tolist()}
+                    entry["attributes"][a] = {
+                        "auc": sa.auc,
+                        "precision20": sa.precision20,
+                        "n_sequences": len(sub),
+                        "success": sa.success.tolist(),
+                        "precision": sa.precision.tolist(),
+                    }
         summary_trackers[t] = entry
 
     # ---- published curves
@@ -426,19 +462,31 @@ def build_report(run_dir, dataset=None, published=None, benchmark: str = "tb100"
             for a in subsets:
                 pub_scores[a] = load_published_scores(published, benchmark, a)
             pub_summary = {
-                "source": str(published), "benchmark": benchmark, "label": label,
+                "source": str(published),
+                "benchmark": benchmark,
+                "label": label,
                 "note": f"published OPE scores computed by the benchmark on the {label} sequence set, "
-                        "not on this run's sequences",
-                "trackers": {n: {"auc": d["auc"], "precision20": d["precision20"], "n_sequences": d["n_sequences"],
-                                 "success": d["success"].tolist(), "precision": d["precision"].tolist()}
-                             for n, d in pub_scores["ALL"].items()},
-                "attributes": {a: {n: {"auc": d["auc"], "precision20": d["precision20"],
-                                       "n_sequences": d["n_sequences"]} for n, d in pub_scores[a].items()}
-                               for a in subsets},
+                "not on this run's sequences",
+                "trackers": {
+                    n: {
+                        "auc": d["auc"],
+                        "precision20": d["precision20"],
+                        "n_sequences": d["n_sequences"],
+                        "success": d["success"].tolist(),
+                        "precision": d["precision"].tolist(),
+                    }
+                    for n, d in pub_scores["ALL"].items()
+                },
+                "attributes": {
+                    a: {
+                        n: {"auc": d["auc"], "precision20": d["precision20"], "n_sequences": d["n_sequences"]}
+                        for n, d in pub_scores[a].items()
+                    }
+                    for a in subsets
+                },
             }
         except (OSError, ValueError) as exc:
-            errors.append({"tracker": None, "sequence": None, "error": f"published scores: {exc}",
-                           "stage": "report"})
+            errors.append({"tracker": None, "sequence": None, "error": f"published scores: {exc}", "stage": "report"})
             pub_scores = {}
 
     # ---- plots
@@ -480,12 +528,16 @@ def build_report(run_dir, dataset=None, published=None, benchmark: str = "tb100"
         "published": pub_summary,
         "errors": errors,
         "settings": {
-            "run_dir": str(run_dir.resolve()), "dataset": str(dataset), "invalid": invalid,
-            "benchmark": benchmark, "top": top, "attributes": attr_source,
+            "run_dir": str(run_dir.resolve()),
+            "dataset": str(dataset),
+            "invalid": invalid,
+            "benchmark": benchmark,
+            "top": top,
+            "attributes": attr_source,
             "max_frames": max_frames,
             "protocol": "OTB OPE: IoU with inclusive pixel extents, success = IoU > t for t in 0:0.05:1, "
-                        "AUC = mean, precision = centre error <= t px for t in 0..50, score at 20 px, "
-                        "curves averaged over sequences, frame 1 = ground truth",
+            "AUC = mean, precision = centre error <= t px for t in 0..50, score at 20 px, "
+            "curves averaged over sequences, frame 1 = ground truth",
         },
         "plots": plots,
         "files": sorted(p.name for p in written) + ["index.html", "summary.json"],
@@ -574,8 +626,11 @@ def _tables(sequences, seq_ok, trackers, st, invalid) -> tuple[str, str]:
     lines.append("")
     n_seq = {t: st[t]["n_sequences"] for t in trackers}
     if len(set(n_seq.values())) > 1:
-        lines.append("Averages are over the sequences each tracker has results for: "
-                     + ", ".join(f"{t} {n}" for t, n in n_seq.items()) + ".")
+        lines.append(
+            "Averages are over the sequences each tracker has results for: "
+            + ", ".join(f"{t} {n}" for t, n in n_seq.items())
+            + "."
+        )
         lines.append("")
     errs = [(t, s, m) for t in trackers for s, m in st[t]["errors"].items()]
     if errs:
@@ -626,7 +681,8 @@ def _index_html(summary: dict, table_md: str) -> str:
     e = html.escape
     s = summary["settings"]
     parts = [
-        "<!DOCTYPE html>", "<html><head><meta charset='utf-8'><title>OTB evaluation report</title>",
+        "<!DOCTYPE html>",
+        "<html><head><meta charset='utf-8'><title>OTB evaluation report</title>",
         "<style>body{font-family:sans-serif;margin:2em;max-width:1400px}table{border-collapse:collapse}"
         "td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}td:first-child,th:first-child{text-align:left}"
         ".plots{display:flex;flex-wrap:wrap;gap:1em}.plots figure{margin:0}.plots img{max-width:640px}"
@@ -636,10 +692,14 @@ def _index_html(summary: dict, table_md: str) -> str:
         f"Invalid ground-truth rule: <code>{e(s['invalid'])}</code>. {e(s['protocol'])}.</p>",
     ]
     if s.get("max_frames"):
-        parts.append(f"<p class='err'>Sequences were cut to {int(s['max_frames'])} frames (max_frames): "
-                     "these numbers are not OTB-compliant.</p>")
-    parts.append("<p>Files: <a href='summary.json'>summary.json</a>, <a href='table.md'>table.md</a>, "
-                 "<a href='table.csv'>table.csv</a></p>")
+        parts.append(
+            f"<p class='err'>Sequences were cut to {int(s['max_frames'])} frames (max_frames): "
+            "these numbers are not OTB-compliant.</p>"
+        )
+    parts.append(
+        "<p>Files: <a href='summary.json'>summary.json</a>, <a href='table.md'>table.md</a>, "
+        "<a href='table.csv'>table.csv</a></p>"
+    )
     parts.append("<h2>Average overlap per sequence</h2>")
     parts.append(_md_table_to_html(table_md))
     pub = summary.get("published")
@@ -672,8 +732,9 @@ def _index_html(summary: dict, table_md: str) -> str:
         parts.append(f"<h2 class='err'>Errors ({len(summary['errors'])})</h2><ul>")
         for err in summary["errors"]:
             who = " / ".join(x for x in (err.get("tracker"), err.get("sequence")) if x)
-            parts.append(f"<li><b>{e(who or 'general')}</b> [{e(err.get('stage', ''))}]: "
-                         f"<code>{e(err['error'])}</code></li>")
+            parts.append(
+                f"<li><b>{e(who or 'general')}</b> [{e(err.get('stage', ''))}]: <code>{e(err['error'])}</code></li>"
+            )
         parts.append("</ul>")
     parts.append("</body></html>")
     return "\n".join(parts) + "\n"

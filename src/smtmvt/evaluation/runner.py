@@ -73,10 +73,10 @@ import time
 import traceback
 import uuid
 import zlib
+from collections.abc import Callable, Iterable
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, Iterable
 
 import numpy as np
 
@@ -245,10 +245,7 @@ def run_pair(task: PairTask, on_frame: Callable[[int], None] | None = None) -> P
             frame_name = seq.frame_names[frame_index] if frame_index < len(seq.frame_names) else "?"
             source = getattr(seq, "files", None)
             file_txt = str(source[frame_index]) if source is not None else frame_name
-            out.error = (
-                f"{task.tracker} on {name}: frame {frame_index} ({file_txt}): "
-                f"{where}: {_describe(exc)}"
-            )
+            out.error = f"{task.tracker} on {name}: frame {frame_index} ({file_txt}): {where}: {_describe(exc)}"
         tb = traceback.extract_tb(exc.__traceback__)
         if tb:  # where in the code, for the tracker's author
             last = tb[-1]
@@ -570,9 +567,7 @@ def run_evaluation(
                 continue
             if lines is not None:
                 result.notes.append(f"{rpath}: {lines} lines for {n} frames; recomputing")
-            tasks.append(
-                PairTask(tname, factory, options, seq, n, sequence_seed(seq.name, base_seed), parallel)
-            )
+            tasks.append(PairTask(tname, factory, options, seq, n, sequence_seed(seq.name, base_seed), parallel))
 
     total_frames = sum(t.n_frames for t in tasks)
     bars = _Progress(len(tasks), total_frames, progress)
@@ -647,8 +642,12 @@ def _run_pool(tasks, workers, finish, bars):
     ctx = multiprocessing.get_context("spawn")
     progress_queue = ctx.Queue() if bars.enabled else None
     with _worker_environ():
-        pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)), mp_context=ctx,
-                                   initializer=_init_pool_worker, initargs=(progress_queue,))
+        pool = ProcessPoolExecutor(
+            max_workers=min(workers, len(tasks)),
+            mp_context=ctx,
+            initializer=_init_pool_worker,
+            initargs=(progress_queue,),
+        )
         futures = {pool.submit(_run_pair_reporting, t): t for t in tasks}
 
     def drain():
@@ -722,10 +721,10 @@ class _Progress:
             return
         from tqdm.auto import tqdm
 
-        self.pairs = tqdm(total=n_pairs, desc="pairs ", unit="pair", position=0, file=sys.stderr,
-                          dynamic_ncols=True)
-        self.fbar = tqdm(total=n_frames, desc="frames", unit="fr", position=1, file=sys.stderr,
-                         dynamic_ncols=True, smoothing=0.05)
+        self.pairs = tqdm(total=n_pairs, desc="pairs ", unit="pair", position=0, file=sys.stderr, dynamic_ncols=True)
+        self.fbar = tqdm(
+            total=n_frames, desc="frames", unit="fr", position=1, file=sys.stderr, dynamic_ncols=True, smoothing=0.05
+        )
 
     def start(self, task: PairTask) -> None:
         if self.enabled:

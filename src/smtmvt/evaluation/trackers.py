@@ -64,7 +64,8 @@ import inspect
 import math
 import re
 import threading
-from typing import Callable, Protocol, runtime_checkable
+from collections.abc import Callable
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
@@ -141,9 +142,7 @@ def get_factory(name: str) -> Callable[..., EvalTracker]:
     with _LOCK:
         factory = _REGISTRY.get(name)
     if factory is None:
-        raise UnknownTrackerError(
-            f"unknown tracker {name!r}; available: {', '.join(available_trackers())}"
-        )
+        raise UnknownTrackerError(f"unknown tracker {name!r}; available: {', '.join(available_trackers())}")
     return factory
 
 
@@ -259,8 +258,9 @@ class OpenCVTracker:
         module, create, params_cls, legacy = _OPENCV[name]
         owner = getattr(cv2, module) if module else cv2
         if not hasattr(owner, create):
-            raise RuntimeError(f"{name}: cv2{'.' + module if module else ''}.{create} is missing "
-                               f"(opencv-contrib-python is needed)")
+            raise RuntimeError(
+                f"{name}: cv2{'.' + module if module else ''}.{create} is missing (opencv-contrib-python is needed)"
+            )
         if params and params_cls is None:
             raise ValueError(f"{name} takes no options (got {sorted(params)})")
         self.name = name
@@ -268,6 +268,7 @@ class OpenCVTracker:
         self._create = getattr(owner, create)
         self._params = None
         if params:
+            assert params_cls is not None  # checked above
             p = getattr(cv2, params_cls)()
             for key, value in params.items():
                 if not hasattr(p, key):
@@ -276,7 +277,7 @@ class OpenCVTracker:
                 setattr(p, key, value)
             self._params = p
         self.seed = seed
-        self._tracker = None
+        self._tracker: Any = None
         self._box: Box | None = None
         self._scale = 1.0
         self.lost = False
@@ -317,7 +318,7 @@ class OpenCVTracker:
         self.lost_frames = 0
 
     def update(self, frame: np.ndarray) -> Box:
-        if self._tracker is None:
+        if self._tracker is None or self._box is None:
             raise RuntimeError(f"{self.name}: update() before init()")
         ok, rect = self._tracker.update(self._prepare(frame))
         s = self._scale
@@ -348,7 +349,7 @@ class SmtmvtAdapter:
         if seed is not None:
             fields["seed"] = int(seed)
         self.config = config.replace(**fields) if fields else config
-        self._tracker = None
+        self._tracker: Any = None
         self.last_result = None
 
     def init(self, frame: np.ndarray, box: Box) -> None:
