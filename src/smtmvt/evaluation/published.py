@@ -42,6 +42,7 @@ from pathlib import Path
 import numpy as np
 
 from ..data.attributes import ATTRIBUTE_NAMES, ATTRIBUTES, load_attributes
+from ..data.names import canonical_name
 
 __all__ = [
     "ATTRIBUTES",
@@ -84,15 +85,6 @@ _BENCHMARK_ALIASES = {
     "otb2015": "tb100",
     "otb-2015": "tb100",
 }
-# names that mean the same sequence once case and separators are normalised
-_NAME_ALIASES = {"human4-2": "human4"}
-
-
-def canonical_name(name: str) -> str:
-    """Matching key of a sequence name: lower case, ``.``/``_``/space -> ``-``, known aliases
-    (``Human4.2`` is the only Human4 target and OTB folders call it ``Human4``)."""
-    key = re.sub(r"[._\s]+", "-", str(name).strip().lower())
-    return _NAME_ALIASES.get(key, key)
 
 
 def _benchmark_key(benchmark: str) -> str:
