@@ -14,7 +14,7 @@ import pytest
 
 from smtmvt.cli import main
 from smtmvt.evaluation.cli import parse_tracker_options
-from test_runner import DEFAULT_SPECS, make_otb_dataset
+from test_runner import DEFAULT_SPECS, evaluate_cli, make_otb_dataset
 
 
 @pytest.fixture(scope="module")
@@ -28,19 +28,8 @@ def result_files(run_dir) -> dict:
 
 def test_evaluate_no_report(dataset, tmp_path, capsys):
     run_dir = tmp_path / "run"
-    rc = main(
-        [
-            "evaluate",
-            "--dataset",
-            str(dataset),
-            "--trackers",
-            "opencv-kcf,opencv-medianflow",
-            "--out",
-            str(run_dir),
-            "--no-report",
-            "--quiet",
-        ]
-    )
+    args = ["--trackers", "opencv-kcf,opencv-medianflow", "--no-report", "--quiet"]
+    rc = evaluate_cli(dataset, run_dir, *args)
     out, err = capsys.readouterr()
     assert rc == 0, err
     assert "6 pair(s) run (90 frames)" in out and str(run_dir / "results") in out
@@ -49,19 +38,7 @@ def test_evaluate_no_report(dataset, tmp_path, capsys):
     assert all(len(p.read_text().splitlines()) == 15 for p in files.values())
     assert not (run_dir / "report").exists()
     # a second call finds everything done
-    rc = main(
-        [
-            "evaluate",
-            "--dataset",
-            str(dataset),
-            "--trackers",
-            "opencv-kcf,opencv-medianflow",
-            "--out",
-            str(run_dir),
-            "--no-report",
-            "--quiet",
-        ]
-    )
+    rc = evaluate_cli(dataset, run_dir, *args)
     out, _ = capsys.readouterr()
     assert rc == 0 and "0 pair(s) run" in out and "6 already done" in out
 
@@ -177,74 +154,53 @@ def test_tracker_options_and_max_frames(dataset, tmp_path, capsys):
         "x": {"name": "abc"},
     }
     run_dir = tmp_path / "run"
-    rc = main(
-        [
-            "evaluate",
-            "--dataset",
-            str(dataset),
-            "--trackers",
-            "opencv-kcf",
-            "--sequences",
-            "SquareC",
-            "--out",
-            str(run_dir),
-            "--max-frames",
-            "6",
-            "--tracker-option",
-            "opencv-kcf:detect_thresh=0.3",
-            "--no-report",
-            "--quiet",
-        ]
+    quick = ("--trackers", "opencv-kcf", "--max-frames", "6", "--no-report", "--quiet")
+    rc = evaluate_cli(
+        dataset, run_dir, *quick, "--sequences", "SquareC", "--tracker-option", "opencv-kcf:detect_thresh=0.3"
     )
     out, err = capsys.readouterr()
     assert rc == 0, err
     assert "not OTB-compliant" in out
     assert len((run_dir / "results" / "opencv-kcf" / "SquareC.txt").read_text().splitlines()) == 6
     assert json.loads((run_dir / "run.json").read_text())["max_frames"] == 6
-    rc = main(
-        [
-            "evaluate",
-            "--dataset",
-            str(dataset),
-            "--trackers",
-            "opencv-kcf",
-            "--max-frames",
-            "6",
-            "--out",
-            str(run_dir),
-            "--tracker-option",
-            "opencv-kcf:nope=1",
-            "--no-report",
-            "--quiet",
-        ]
-    )
+    rc = evaluate_cli(dataset, run_dir, *quick, "--tracker-option", "opencv-kcf:nope=1")
     err = capsys.readouterr().err
     assert rc == 1 and err.count("unknown option 'nope'") == 1  # reported once, not per sequence
 
 
-def test_killed_run_restarts_without_redoing_finished_pairs(tmp_path):
-    """Kill `smtmvt evaluate` (SIGKILL) once some pairs are written; the restart skips them."""
-    root = make_otb_dataset(
-        tmp_path / "otb",
-        n_frames=30,
-        specs={f"Seq{k}": dict(start=(20 + 5 * k, 30), step=(1.5, 0.5), side=(30, 28)) for k in range(8)},
-    )
-    run_dir = tmp_path / "run"
-    cmd = [
+def _cli(root, run_dir, *extra):
+    return [
         sys.executable,
         "-m",
         "smtmvt.cli",
         "evaluate",
         "--dataset",
         str(root),
-        "--trackers",
-        "opencv-kcf",
         "--out",
         str(run_dir),
         "--no-report",
         "--quiet",
+        *extra,
     ]
-    env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1] / "src"))
+
+
+def _env():
+    return dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1] / "src"))
+
+
+def _squares(root, n=8, n_frames=30):
+    return make_otb_dataset(
+        root,
+        n_frames=n_frames,
+        specs={f"Seq{k}": dict(start=(20 + 5 * k, 30), step=(1.5, 0.5), side=(30, 28)) for k in range(n)},
+    )
+
+
+def test_killed_run_restarts_without_redoing_finished_pairs(tmp_path):
+    """Kill `smtmvt evaluate` (SIGKILL) once some pairs are written; the restart skips them."""
+    root = _squares(tmp_path / "otb")
+    run_dir = tmp_path / "run"
+    cmd, env = _cli(root, run_dir, "--trackers", "opencv-kcf"), _env()
     proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=env)
     deadline = time.monotonic() + 120
     finished = {}
@@ -344,3 +300,106 @@ def test_package_reexports_lazily():
     env = dict(os.environ, PYTHONPATH=str(Path(__file__).resolve().parents[1] / "src"))
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120)
     assert out.returncode == 0 and out.stdout.strip() == "ok", out.stderr
+
+
+# ----------------------------------------------------------------------------- issue 8: nothing lost, no orphans
+
+
+@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGTERM])
+def test_killing_the_driver_ends_its_workers(tmp_path, sig):
+    """SIGKILL or SIGTERM of ``evaluate --workers 2``: no worker is left behind; SIGTERM stops
+    the run like Ctrl-C (exit 128 + 15), and what was written is whole."""
+    psutil = pytest.importorskip("psutil")
+    root = _squares(tmp_path / "otb", n_frames=40)
+    run_dir = tmp_path / "run"
+    err_file = tmp_path / "stderr.txt"  # not a pipe: orphaned workers would hold it open
+    with open(err_file, "w") as err_out:
+        proc = subprocess.Popen(
+            _cli(root, run_dir, "--trackers", "opencv-csrt,opencv-boosting", "--workers", "2"),
+            stdout=subprocess.DEVNULL,
+            stderr=err_out,
+            env=_env(),
+        )
+    deadline, workers = time.monotonic() + 120, []
+    while time.monotonic() < deadline and proc.poll() is None:
+        workers = [
+            p for p in psutil.Process(proc.pid).children(recursive=True) if "multiprocessing" in " ".join(p.cmdline())
+        ]
+        if len(workers) >= 2 and any(run_dir.glob("results/*/*.txt")):
+            break
+        time.sleep(0.05)
+    assert proc.poll() is None and len(workers) >= 2, err_file.read_text()
+    proc.send_signal(sig)
+    rc = proc.wait(60)
+    err = err_file.read_text()
+    if sig == signal.SIGTERM:
+        assert rc == 128 + signal.SIGTERM and "terminated" in err, err
+    _, alive = psutil.wait_procs(workers, timeout=15)
+    for p in alive:  # do not leave them behind for the next test
+        p.kill()
+    assert not alive, "workers outlived the driver"
+    for p in run_dir.glob("results/*/*.txt"):
+        assert len(p.read_text().splitlines()) == 40
+    assert not list(run_dir.rglob("*.tmp"))
+    assert isinstance(json.loads((run_dir / "errors.json").read_text()), list)
+
+
+def test_a_second_command_on_a_run_folder_in_use_is_refused(tmp_path):
+    root = _squares(tmp_path / "otb")
+    run_dir = tmp_path / "run"
+    first = subprocess.Popen(
+        _cli(root, run_dir, "--trackers", "opencv-kcf"),
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        env=_env(),
+    )
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and not (run_dir / "run.json").exists():
+        time.sleep(0.01)
+    second = subprocess.run(
+        _cli(root, run_dir, "--trackers", "opencv-kcf,opencv-mosse"),
+        capture_output=True,
+        text=True,
+        env=_env(),
+        timeout=120,
+    )
+    assert first.wait(300) == 0
+    assert second.returncode == 2, second.stdout
+    assert f"{run_dir} is in use by smtmvt evaluate (pid {first.pid})" in second.stderr
+    assert json.loads((run_dir / "errors.json").read_text()) == []
+    assert len(list(run_dir.glob("results/opencv-kcf/*.txt"))) == 8
+    assert json.loads((run_dir / "run.json").read_text())["trackers"] == ["opencv-kcf"]
+
+
+def test_evaluate_exits_1_when_the_report_has_gaps(dataset, tmp_path, capsys):
+    run_dir = tmp_path / "run"
+    args = ["evaluate", "--dataset", str(dataset), "--sequences", "SquareA", "--out", str(run_dir), "--quiet"]
+    assert main([*args, "--trackers", "opencv-kcf,opencv-mosse"]) == 0
+    (run_dir / "results" / "opencv-mosse" / "SquareA.txt").unlink()
+    capsys.readouterr()
+    assert main([*args, "--trackers", "opencv-kcf"]) == 1
+    err = capsys.readouterr().err
+    assert "opencv-mosse / SquareA: missing result file results/opencv-mosse/SquareA.txt" in err
+
+
+def test_evaluate_refuses_another_frame_limit_on_a_run_folder(dataset, tmp_path, capsys):
+    run_dir = tmp_path / "run"
+    args = ["--trackers", "opencv-kcf", "--sequences", "SquareA", "--no-report", "--quiet"]
+    assert evaluate_cli(dataset, run_dir, *args) == 0
+    before = (run_dir / "results" / "opencv-kcf" / "SquareA.txt").read_text()
+    capsys.readouterr()
+    assert evaluate_cli(dataset, run_dir, *args, "--max-frames", "5") == 2
+    assert f"{run_dir} was run with all frames" in capsys.readouterr().err
+    assert (run_dir / "results" / "opencv-kcf" / "SquareA.txt").read_text() == before
+    assert evaluate_cli(dataset, run_dir, *args, "--max-frames", "5", "--overwrite") == 0
+    assert len((run_dir / "results" / "opencv-kcf" / "SquareA.txt").read_text().splitlines()) == 5
+
+
+@pytest.mark.parametrize("option", ["--max-frames", "--workers", "--repeat"])
+@pytest.mark.parametrize("value", ["0", "-1"])
+def test_evaluate_numbers_must_be_positive(dataset, tmp_path, capsys, option, value):
+    with pytest.raises(SystemExit) as info:
+        evaluate_cli(dataset, tmp_path / "r", "--trackers", "opencv-kcf", option, value)
+    assert info.value.code == 2
+    assert f"{option}: expected a whole number >= 1, got {value!r}" in capsys.readouterr().err
+    assert not (tmp_path / "r").exists()

@@ -178,7 +178,7 @@ def test_short_result_file_is_an_error_and_the_rest_is_reported(run):
     # a malformed line names the file and the line
     (run["dir"] / "results" / "alpha" / "SeqB.txt").write_text("1,2,3,4\n1,2,oops,4\n" + "1,2,3,4\n" * 6)
     s2 = build_report(run["dir"], formats=("png",))
-    assert "results/alpha/SeqB.txt:2" in s2["trackers"]["alpha"]["errors"]["SeqB"]
+    assert "results/alpha/SeqB.txt, line 2" in s2["trackers"]["alpha"]["errors"]["SeqB"]
     assert set(s2["trackers"]["alpha"]["sequences"]) == {"SeqA", "SeqC"}
 
 
@@ -300,7 +300,8 @@ def test_report_rebuilds_from_stored_results_only(run):
 def test_imported_mat_results_scored_on_our_sequences(otb_dir, otb_results_dir, tmp_path):
     """Import the toolkit's CSK .mat files into a run: they are scored by our metrics on our
     sequences (table) and reproduce the published OTB-100 per-sequence overlaps."""
-    from smtmvt.evaluation.published import import_into_run, load_published_scores
+    from smtmvt.evaluation.imports import import_into_run
+    from smtmvt.evaluation.published import load_published_scores
 
     rd = tmp_path / "run"
     rd.mkdir()
@@ -315,3 +316,69 @@ def test_imported_mat_results_scored_on_our_sequences(otb_dir, otb_results_dir, 
     assert "CSK" in (rd / "report" / "table.md").read_text()
     assert set(s["attributes"]) >= {"SV", "DEF", "OCC"}
     assert s["published"]["label"] == "OTB-100" and len(s["published"]["trackers"]) == 34
+
+
+# ----------------------------------------------------------------------------- issue 8: writes nowhere else
+
+
+def test_report_on_a_folder_that_is_not_a_run_creates_nothing(tmp_path, capsys):
+    from smtmvt.cli import main
+
+    folder = tmp_path / "photos"
+    folder.mkdir()
+    (folder / "a.jpg").write_bytes(b"x")
+    assert main(["report", str(folder)]) == 2
+    assert "not a run folder" in capsys.readouterr().err
+    assert [p.name for p in folder.iterdir()] == ["a.jpg"]
+    with pytest.raises(ValueError, match="not a run folder"):
+        build_report(folder)
+    assert [p.name for p in folder.iterdir()] == ["a.jpg"]
+
+
+def test_a_link_in_the_report_folder_is_replaced_not_written_through(run):
+    build_report(run["dir"], formats=("png",))
+    outside = run["tmp"] / "my-paper-table.md"
+    outside.write_text("my own table")
+    table = run["dir"] / "report" / "table.md"
+    table.unlink()
+    table.symlink_to(outside)
+    build_report(run["dir"], formats=("png",))
+    assert outside.read_text() == "my own table"
+    assert not table.is_symlink() and "Average overlap per sequence" in table.read_text()
+
+
+def test_a_pipe_in_a_sequence_name_keeps_the_markdown_table_whole(run):
+    import matplotlib.image
+
+    ds = Path(json.loads((run["dir"] / "run.json").read_text())["dataset"])
+    name = "Left|Right"
+    gt = _gt(5, 0)
+    _write(ds / name / "groundtruth_rect.txt", gt)
+    (ds / name / "img").mkdir()
+    for i in range(5):
+        matplotlib.image.imsave(ds / name / "img" / f"{i + 1:04d}.png", np.zeros((64, 96)), cmap="gray")
+    _write(run["dir"] / "results" / "alpha" / f"{name}.txt", _shifted(gt, 3))
+    meta = json.loads((run["dir"] / "run.json").read_text())
+    meta["sequences"].append(name)
+    (run["dir"] / "run.json").write_text(json.dumps(meta))
+    s = build_report(run["dir"], formats=("png",))
+    assert name in s["trackers"]["alpha"]["sequences"]
+    md = (run["dir"] / "report" / "table.md").read_text()
+    rows = [line for line in md.splitlines() if line.startswith("| ")]
+    for line in rows:  # every row has the header's number of columns
+        assert len(re.findall(r"(?<!\\)\|", line)) == 5, line
+    assert any(line.startswith("| Left\\|Right | ") for line in rows)
+    assert "<td>Left|Right</td>" in (run["dir"] / "report" / "index.html").read_text()
+
+
+def test_our_result_files_are_read_strictly(run):
+    """A blank line in the middle of a result file would shift every later box by a frame:
+    our own files are read by the strict reader, which names the line."""
+    rows = run["preds"]["alpha"]["SeqC"]
+    path = run["dir"] / "results" / "alpha" / "SeqC.txt"
+    path.write_text(
+        "".join(",".join(f"{v:g}" for v in r) + "\n" + ("\n" if i == 1 else "") for i, r in enumerate(rows))
+    )
+    s = build_report(run["dir"], formats=("png",))
+    assert "SeqC" not in s["trackers"]["alpha"]["sequences"]
+    assert "results/alpha/SeqC.txt, line 3: blank line" in s["trackers"]["alpha"]["errors"]["SeqC"]

@@ -452,3 +452,85 @@ def test_unreachable_scheduler_is_a_clear_error(dataset, tmp_path):
                 progress=False,
                 report=False,
             )
+
+
+# ----------------------------------------------------------------------------- the run folder keeps its settings (issue 8)
+
+
+def test_a_different_frame_limit_is_refused_and_nothing_is_lost(dataset, tmp_path):
+    run_dir = tmp_path / "run"
+    run_evaluation(dataset, ["opencv-kcf"], run_dir, progress=False, report=False)
+    texts = read_result_texts(run_dir)
+    with pytest.raises(ValueError, match=rf"{run_dir} was run with all frames.*--max-frames 5.*--overwrite"):
+        run_evaluation(dataset, ["opencv-kcf"], run_dir, progress=False, report=False, max_frames=5)
+    assert read_result_texts(run_dir) == texts  # every full result kept
+    run = run_evaluation(dataset, ["opencv-kcf"], run_dir, progress=False, report=False, max_frames=5, overwrite=True)
+    assert len(run.done) == 3 and any("--overwrite: removed" in n for n in run.notes)
+    assert all(len(t.splitlines()) == 5 for t in read_result_texts(run_dir).values())
+    assert json.loads((run_dir / "run.json").read_text())["max_frames"] == 5
+
+
+def test_a_corrupt_line_is_recomputed_even_with_the_right_line_count(dataset, tmp_path):
+    run_dir = tmp_path / "run"
+    run_evaluation(dataset, ["opencv-kcf"], run_dir, sequences=["SquareA"], progress=False, report=False)
+    rp = result_path(run_dir, "opencv-kcf", "SquareA")
+    full = rp.read_text()
+    lines = full.splitlines(keepends=True)
+    lines[4] = "12,oops,3,4\n"
+    rp.write_text("".join(lines))
+    run = run_evaluation(dataset, ["opencv-kcf"], run_dir, sequences=["SquareA"], progress=False, report=False)
+    assert run.done == [("opencv-kcf", "SquareA")]
+    assert any("line 5" in n and "recomputing" in n for n in run.notes)
+    assert rp.read_text() == full
+
+
+def test_evaluate_does_not_take_imported_results_for_its_own(dataset, tmp_path, registered):
+    """A tracker folder made by ``report --import`` is never counted as computed results."""
+    from smtmvt.evaluation.imports import import_into_run
+
+    run_dir = tmp_path / "run"
+    run_evaluation(dataset, ["opencv-kcf"], run_dir, sequences=["SquareA"], progress=False, report=False)
+    src = tmp_path / "foreign" / "test-cv"
+    src.mkdir(parents=True)
+    (src / "SquareA.txt").write_text(result_path(run_dir, "opencv-kcf", "SquareA").read_text())
+    assert import_into_run(run_dir, src) == {"test-cv": ["SquareA"]}
+    registered("test-cv", ConstantVelocity)
+    run = run_evaluation(dataset, ["test-cv"], run_dir, sequences=["SquareA"], progress=False, report=False)
+    assert run.failed == [("test-cv", None)]
+    assert "imported" in run.errors[0]["error"] and "results/test-cv" in run.errors[0]["error"]
+    assert result_path(run_dir, "test-cv", "SquareA").read_text() == (src / "SquareA.txt").read_text()
+
+
+def test_a_second_run_on_a_locked_folder_is_a_clear_error(dataset, tmp_path):
+    from smtmvt.evaluation.rundir import RunDir
+
+    run_dir = tmp_path / "run"
+    with RunDir(run_dir).locked("smtmvt evaluate", create=True):
+        with pytest.raises(ValueError, match=f"{run_dir} is in use by smtmvt evaluate"):
+            run_evaluation(dataset, ["opencv-kcf"], run_dir, progress=False, report=False)
+    assert not (run_dir / "results").exists() and not (run_dir / "run.json").exists()
+
+
+def test_opencv_mil_resumed_or_parallel_equals_uninterrupted(dataset, tmp_path):
+    """MIL draws from an OpenCV random state that ``setRNGSeed`` does not reset: each pair runs
+    in a fresh process, so the boxes do not depend on what a process ran before."""
+    seqs = ["SquareA", "SquareB", "SquareC"]
+    whole = tmp_path / "whole"
+    run_evaluation(dataset, ["opencv-mil"], whole, sequences=seqs, progress=False, report=False)
+    texts = read_result_texts(whole)
+    resumed = tmp_path / "resumed"
+    run_evaluation(dataset, ["opencv-mil"], resumed, sequences=seqs, progress=False, report=False)
+    result_path(resumed, "opencv-mil", "SquareC").unlink()  # run third the first time, first now
+    run = run_evaluation(dataset, ["opencv-mil"], resumed, sequences=seqs, progress=False, report=False)
+    assert run.done == [("opencv-mil", "SquareC")]
+    assert read_result_texts(resumed) == texts
+    parallel = tmp_path / "parallel"
+    run_evaluation(dataset, ["opencv-mil"], parallel, sequences=seqs, workers=2, progress=False, report=False)
+    assert read_result_texts(parallel) == texts
+
+
+def evaluate_cli(dataset, run_dir, *args) -> int:
+    """``smtmvt evaluate --dataset DATASET --out RUN_DIR ARGS...`` in this process (exit status)."""
+    from smtmvt.cli import main
+
+    return main(["evaluate", "--dataset", str(dataset), "--out", str(run_dir), *args])

@@ -33,11 +33,11 @@ for matching everywhere.
 from __future__ import annotations
 
 import json
-import os
 import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -60,7 +60,6 @@ __all__ = [
     "read_otb_json",
     "ivt_affine_to_rect",
     "import_results",
-    "import_into_run",
     "load_attribute_table",
 ]
 
@@ -301,7 +300,7 @@ def read_otb_mat(path, tracker: str | None = None, sequence: str | None = None) 
     except Exception as exc:  # noqa: BLE001 - scipy raises several types for corrupt files
         raise ValueError(f"{path}: cannot read MATLAB file ({exc})") from None
     keys = [k for k in mat if not k.startswith("__")]
-    common = dict(tracker=tracker, sequence=sequence, source=str(path), format="otb-mat")
+    common: dict[str, Any] = dict(tracker=tracker, sequence=sequence, source=str(path), format="otb-mat")
     if "results" in mat:
         rec = mat["results"]
         # a cell array (1 x runs; OPE has one run) of 1x1 structs
@@ -515,106 +514,6 @@ def import_results(
 def _renamed(r: ImportedResult, name: str) -> ImportedResult:
     r.tracker = name
     return r
-
-
-def _run_meta(run_dir: Path) -> dict:
-    meta_path = run_dir / "run.json"
-    if meta_path.is_file():
-        try:
-            meta = json.loads(meta_path.read_text(encoding="utf-8"))
-            return meta if isinstance(meta, dict) else {}
-        except ValueError:
-            return {}
-    return {}
-
-
-def _run_sequence_names(meta: dict) -> dict[str, str]:
-    """canonical -> name used by this run (run.json ``sequences``, else the dataset's names)."""
-    names: dict[str, str] = {}
-    for s in meta.get("sequences") or []:
-        names.setdefault(canonical_name(s), s)
-    dataset = meta.get("dataset")
-    if dataset and Path(dataset).is_dir():
-        try:
-            from smtmvt.data import list_dataset
-
-            for name, _folder, _target in list_dataset(dataset):
-                names.setdefault(canonical_name(name), name)
-        except Exception:  # noqa: BLE001 - fall back to the folder names
-            pass
-        for p in Path(dataset).iterdir():
-            if p.is_dir():
-                names.setdefault(canonical_name(p.name), p.name)
-    return names
-
-
-def import_into_run(
-    run_dir,
-    source,
-    tracker_name: str | None = None,
-    fmt: str = "auto",
-    trackers: Iterable[str] | None = None,
-    sequences: Iterable[str] | None = None,
-) -> dict[str, list[str]]:
-    """Import foreign results into ``RUN_DIR/results/<tracker>/<seq>.txt`` so that the report
-    scores them with our metrics on our sequences, beside our own runs.
-
-    Only the run's sequences are imported when ``run.json`` lists them and ``sequences`` is
-    not given. Sequence files take the run's spelling of the name (``run.json`` sequences,
-    else the dataset's sequence names; else the source's). Per-frame times are written to
-    ``times/<seq>_time.txt`` when the source has them (text) or an fps (``1/fps`` per frame).
-    Provenance and the annotation offset of each sequence (Tiger1 starts at frame 6 in the
-    toolkit's files) go to ``results/<tracker>/import.json``. Returns
-    ``{tracker: [sequences written]}``.
-    """
-    run_dir = Path(run_dir)
-    meta = _run_meta(run_dir)
-    if sequences is None and meta.get("sequences"):
-        sequences = list(meta["sequences"])
-    found = import_results(source, fmt=fmt, tracker_name=tracker_name, trackers=trackers, sequences=sequences)
-    if not found:
-        raise ValueError(f"{source}: no results matched (trackers={trackers}, sequences={sequences})")
-    names = _run_sequence_names(meta)
-    written: dict[str, list[str]] = {}
-    for trk, seqs in found.items():
-        if not re.fullmatch(r"[\w.+-]+", trk):
-            raise ValueError(f"tracker name {trk!r}: use letters, digits, '.', '+', '-' or '_' only")
-        tdir = run_dir / "results" / trk
-        meta_path = tdir / "import.json"
-        meta = {}
-        if meta_path.is_file():
-            try:
-                meta = json.loads(meta_path.read_text(encoding="utf-8"))
-            except ValueError:
-                meta = {}
-        meta.setdefault("sequences", {})
-        for seq, res in sorted(seqs.items()):
-            name = names.get(canonical_name(seq), seq)
-            write_box_file(tdir / f"{name}.txt", res.boxes)
-            times = None
-            if res.times is not None and len(res.times) == len(res.boxes):
-                times = np.asarray(res.times, dtype=np.float64)
-            elif res.fps and res.fps > 0:
-                times = np.full(len(res.boxes), 1.0 / res.fps)
-            if times is not None:
-                (tdir / "times").mkdir(parents=True, exist_ok=True)
-                np.savetxt(tdir / "times" / f"{name}_time.txt", times, fmt="%.8f")
-            meta["sequences"][name] = {
-                "source": os.path.abspath(res.source),
-                "format": res.format,
-                "source_name": res.sequence,
-                "result_type": res.result_type,
-                "start_frame": res.start_frame,
-                "anno_begin": res.anno_begin,
-                "anno_offset": res.anno_offset,
-                "fps": res.fps,
-                "frames": int(len(res.boxes)),
-            }
-            written.setdefault(trk, []).append(name)
-        meta["imported"] = True
-        meta_path.parent.mkdir(parents=True, exist_ok=True)
-        meta_path.write_text(json.dumps(meta, indent=2, sort_keys=True), encoding="utf-8")
-    return written
 
 
 # --------------------------------------------------------------------------- attributes

@@ -182,7 +182,7 @@ class _Pool:
             while any(w.task is not None for w in workers):
                 busy = {w.conn: w for w in workers if w.task is not None}
                 for conn in wait(list(busy), timeout=0.5):
-                    w = busy[conn]  # type: ignore[index]
+                    w = busy[conn]
                     if self._receive(w, finish):
                         self._feed(w, pending)
                     elif w.task is None:  # its process died: replace it
