@@ -1,5 +1,5 @@
 # make demo : create .venv with pinned dependencies, run the built-in demo
-# make test : create .venv with pinned dependencies + test tools, run the tests
+# make test : create .venv with pinned dependencies + test tools, run make lint, then the tests
 # make lint : ruff (lint + format check) and mypy, configured in pyproject.toml
 PYTHON ?= python3
 VENV := .venv
@@ -22,7 +22,7 @@ $(VENV)/.dev: $(VENV)/.runtime requirements-dev.txt
 demo: $(VENV)/.runtime
 	$(VENV)/bin/smtmvt demo --out $(DEMO_OUT)
 
-test: $(VENV)/.dev
+test: lint
 	$(PY) -m pytest -q -n 2 --dist loadfile
 
 lint: $(VENV)/.dev

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .args import positive_int
+
 __all__ = ["add_parser", "run_demo"]
 
 
@@ -19,7 +21,7 @@ def add_parser(sub) -> None:
         "an annotated GIF, a per-frame overlap plot and the result file into --out.",
     )
     p.add_argument("--out", default="demo-output", help="output folder (default: demo-output)")
-    p.add_argument("--frames", type=int, default=120, help="number of frames (default 120)")
+    p.add_argument("--frames", type=positive_int, default=120, help="number of frames (default 120)")
     p.add_argument("--seed", type=int, default=0, help="random seed")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run_demo)
