@@ -149,3 +149,13 @@ def test_lock_gives_a_clear_error_to_a_second_command(tmp_path):
 def test_run_info_round_trip():
     info = RunInfo(dataset="/d", trackers=["a"], sequences=["S"], max_frames=4, repeat=2)
     assert RunInfo.from_json(info.to_json(), Path("run.json")) == info
+
+
+def test_temporaries_of_a_killed_command_are_removed_on_the_next_start(tmp_path):
+    run = RunDir(tmp_path / "run")
+    run.settle(tmp_path, trackers=["a"], sequences=["S"], max_frames=None, repeat=None)
+    stale = run.results_dir / "a" / ".S.txt.x1y2.tmp"  # what SIGKILL during a write leaves
+    stale.parent.mkdir(parents=True)
+    stale.write_text("1,1")
+    _, notes = run.settle(tmp_path, trackers=["a"], sequences=["S"], max_frames=None, repeat=None)
+    assert not stale.exists() and any("removed 1 temporary file" in n for n in notes)

@@ -50,7 +50,7 @@ class Sequence:
         As given (``source`` and ``groundtruth_file`` as ``Path``).
     """
 
-    def __init__(self, name, source, frame_names, groundtruth=None, *, groundtruth_file=None):
+    def __init__(self, name, source, frame_names, groundtruth=None, *, groundtruth_file=None) -> None:
         self.name = str(name)
         self.source = Path(source)
         self.frame_names = [str(n) for n in frame_names]

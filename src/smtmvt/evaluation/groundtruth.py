@@ -23,7 +23,7 @@ class GroundTruth:
     separators (``Seq_1``, ``seq-1``) are refused, never mixed up.
     """
 
-    def __init__(self, root):
+    def __init__(self, root) -> None:
         self.root = Path(root)
         if not self.root.exists():
             raise FileNotFoundError(f"dataset not found: {self.root}")

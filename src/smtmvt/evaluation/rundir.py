@@ -174,7 +174,7 @@ class RunDir:
     is not (:meth:`info`).
     """
 
-    def __init__(self, root):
+    def __init__(self, root) -> None:
         self.root = Path(root).expanduser().resolve()
         self._lock_fd: int | None = None
         self._lock_depth = 0
@@ -385,6 +385,7 @@ class RunDir:
         returned ``info.repeat`` is this command's count. Call under :meth:`locked`.
         """
         notes: list[str] = []
+        self._remove_stale_temporaries(notes)
         old = self._read_info() if self.run_json.is_file() else None
         if old is not None:
             clash = _settings_clash(self, old, dataset, max_frames)
@@ -411,6 +412,16 @@ class RunDir:
         if wanted < info.repeat:
             notes.append(f"{self.root} holds {info.repeat} repeats; this command uses the first {wanted}")
         return RunInfo(**{**asdict(info), "repeat": wanted}), notes
+
+    def _remove_stale_temporaries(self, notes: list[str]) -> None:
+        """Delete the temporary files of atomic writes that a killed command left (hidden
+        ``.<name>.<random>.tmp`` beside their target; no reader ever takes them for results).
+        Safe under the lock: no other command is writing."""
+        stale = [p for p in self.root.rglob(".*.tmp") if p.is_file()] if self.root.is_dir() else []
+        for p in stale:
+            p.unlink(missing_ok=True)
+        if stale:
+            notes.append(f"removed {len(stale)} temporary file(s) left by an interrupted command")
 
     def _wipe(self) -> str:
         """Remove results/, errors.json and report/ (for ``--overwrite``); say what went."""
