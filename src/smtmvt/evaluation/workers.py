@@ -53,6 +53,20 @@ def exit_with_parent(parent_pid: int, interval: float = 0.5) -> None:
     threading.Thread(target=watch, name="smtmvt-exit-with-parent", daemon=True).start()
 
 
+def _killed_with_parent() -> None:
+    """Linux: ask the kernel to SIGKILL this process when its parent dies (immediate; the
+    :func:`exit_with_parent` thread stays as the portable fallback). Only for processes the
+    driver's main thread starts: the signal follows the thread that started the process."""
+    if not sys.platform.startswith("linux"):
+        return
+    try:
+        import ctypes
+
+        ctypes.CDLL(None, use_errno=True).prctl(1, 9)  # PR_SET_PDEATHSIG, SIGKILL
+    except (OSError, AttributeError):
+        pass
+
+
 def execute(task: PairTask, on_frame: Callable[[int], None] | None = None) -> PairOutcome:
     """Run ``task`` here, or in a fresh process when ``task.fresh_process``."""
     if not task.fresh_process:
@@ -119,6 +133,7 @@ def _worker_environ() -> Iterator[None]:
 def _worker_main(conn, parent_pid: int) -> None:
     """A pool worker: run the tasks it receives until ``None`` or the pipe closes, sending
     ``("frames", k)`` now and then and ``("done", outcome)`` after each task."""
+    _killed_with_parent()
     exit_with_parent(parent_pid)
     while True:
         try:
