@@ -118,11 +118,7 @@ def _target_name(run: RunDir, info: RunInfo, tracker: str, notes: list) -> str:
 
 def _store(run: RunDir, tracker: str, items: dict[str, ImportedResult]) -> list[str]:
     """Write boxes, times and ``import.json`` of one imported tracker; the names written."""
-    meta_path = run.import_json(tracker)
-    try:
-        meta = json.loads(meta_path.read_text(encoding="utf-8")) if meta_path.is_file() else {}
-    except ValueError:
-        meta = {}
+    meta = run.import_meta(tracker)
     meta.setdefault("sequences", {})
     for seq, res in sorted(items.items()):
         meta["sequences"][seq] = {
@@ -139,7 +135,7 @@ def _store(run: RunDir, tracker: str, items: dict[str, ImportedResult]) -> list[
     meta["imported"] = True
     # the marker first: a folder with results is never taken for computed ones, even if
     # this is interrupted half-way
-    run.write_text(meta_path, json.dumps(meta, indent=2, sort_keys=True))
+    run.write_text(run.import_json(tracker), json.dumps(meta, indent=2, sort_keys=True))
     for seq, res in sorted(items.items()):
         times = None
         if res.times is not None and len(res.times) == len(res.boxes):

@@ -219,6 +219,15 @@ class RunDir:
     def import_json(self, tracker: str) -> Path:
         return self.tracker_dir(tracker) / IMPORT_JSON
 
+    def import_meta(self, tracker: str) -> dict:
+        """``import.json`` of an imported tracker (``{"imported": True, "sequences": {seq:
+        provenance}}``); an empty dict when there is none or it cannot be read."""
+        try:
+            meta = json.loads(self.import_json(tracker).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return {}
+        return meta if isinstance(meta, dict) else {}
+
     def is_imported(self, tracker: str) -> bool:
         """True when ``results/<tracker>`` holds imported results (``import.json``)."""
         return self.import_json(tracker).is_file()

@@ -19,7 +19,6 @@ gap (``errors``) naming the first missing or bad file.
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -198,12 +197,10 @@ def _score_one(run: RunDir, tracker: str, seq: str, r: int, gt: np.ndarray, offs
 
 def _import_offsets(run: RunDir, tracker: str) -> dict[str, int]:
     """``{canonical sequence: annotation offset}`` from an imported tracker's ``import.json``."""
-    if not run.is_imported(tracker):
-        return {}
     try:
-        meta = json.loads(run.import_json(tracker).read_text(encoding="utf-8"))
-        return {canonical_name(s): int(rec.get("anno_offset") or 0) for s, rec in meta.get("sequences", {}).items()}
-    except (OSError, ValueError, AttributeError, TypeError):
+        records = run.import_meta(tracker).get("sequences", {})
+        return {canonical_name(s): int(rec.get("anno_offset") or 0) for s, rec in records.items()}
+    except (ValueError, AttributeError, TypeError):
         return {}
 
 
