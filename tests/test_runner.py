@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import functools
 import json
+import os
 from pathlib import Path
 
 import cv2
@@ -123,6 +124,17 @@ class CrashAt(ConstantVelocity):
         if self.armed and self.i == self.frame:
             raise RuntimeError("simulated tracker bug")
         return super().update(frame)
+
+
+class DieAt(CrashAt):
+    """Ends its process (as a segfault would) in ``update`` at frame ``frame`` of the sequence
+    whose first box is ``first_box``."""
+
+    def update(self, frame):
+        self.i += 1
+        if self.armed and self.i == self.frame:
+            os._exit(3)
+        return ConstantVelocity.update(self, frame)
 
 
 @pytest.fixture
@@ -534,3 +546,13 @@ def evaluate_cli(dataset, run_dir, *args) -> int:
     from smtmvt.cli import main
 
     return main(["evaluate", "--dataset", str(dataset), "--out", str(run_dir), *args])
+
+
+def test_a_worker_that_dies_fails_its_pair_only(dataset, tmp_path, registered):
+    """A worker process that dies mid-pair is replaced; its pair is an error, the rest completes."""
+    registered("test-die", functools.partial(DieAt, first_box_of(dataset, "SquareB"), 4))
+    run = run_evaluation(dataset, ["test-die"], tmp_path / "run", workers=2, progress=False, report=False)
+    assert sorted(run.done) == [("test-die", "SquareA"), ("test-die", "SquareC")]
+    (err,) = run.errors
+    assert err["sequence"] == "SquareB" and "worker failed (exit code 3" in err["error"]
+    assert not result_path(tmp_path / "run", "test-die", "SquareB").exists()
