@@ -1,11 +1,12 @@
 # make demo : create .venv with pinned dependencies, run the built-in demo
-# make test : create .venv with pinned dependencies + test tools, run the tests
+# make test : create .venv with pinned dependencies + test tools, run make lint, then the tests
+# make lint : ruff (lint + format check) and mypy, configured in pyproject.toml
 PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
 DEMO_OUT ?= demo-output
 
-.PHONY: demo test bench clean
+.PHONY: demo test lint bench clean
 
 $(VENV)/.runtime: requirements.txt pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -21,8 +22,13 @@ $(VENV)/.dev: $(VENV)/.runtime requirements-dev.txt
 demo: $(VENV)/.runtime
 	$(VENV)/bin/smtmvt demo --out $(DEMO_OUT)
 
-test: $(VENV)/.dev
+test: lint
 	$(PY) -m pytest -q -n 2 --dist loadfile
+
+lint: $(VENV)/.dev
+	$(VENV)/bin/ruff check .
+	$(VENV)/bin/ruff format --check .
+	$(VENV)/bin/mypy
 
 bench: $(VENV)/.runtime
 	$(PY) bench/bench_tracker.py

@@ -41,16 +41,37 @@ def test_track_with_box_max_frames_and_video(otb_folder, tmp_path):
     root, gt = otb_folder
     out, video = tmp_path / "res.txt", tmp_path / "v.gif"
     box = ",".join(f"{v:g}" for v in gt[0])
-    assert main(["track", str(root / "img"), "--out", str(out), "--box", box, "--max-frames", "3",
-                 "--particles", "50", "--video", str(video), "--quiet"]) == 0
+    assert (
+        main(
+            [
+                "track",
+                str(root / "img"),
+                "--out",
+                str(out),
+                "--box",
+                box,
+                "--max-frames",
+                "3",
+                "--particles",
+                "50",
+                "--video",
+                str(video),
+                "--quiet",
+            ]
+        )
+        == 0
+    )
     assert len(out.read_text().splitlines()) == 3
     assert video.stat().st_size > 1000
 
 
-@pytest.mark.parametrize("args,match", [
-    (["--box", "1,2,3"], "--box must be four numbers"),
-    (["--box", "1,2,0,5"], "zero or negative size"),
-])
+@pytest.mark.parametrize(
+    "args,match",
+    [
+        (["--box", "1,2,3"], "--box must be four numbers"),
+        (["--box", "1,2,0,5"], "zero or negative size"),
+    ],
+)
 def test_track_bad_box_is_a_clear_error(otb_folder, tmp_path, capsys, args, match):
     root, _ = otb_folder
     with pytest.raises(SystemExit) if "four" in match else _no_raise():
@@ -95,3 +116,123 @@ class _no_raise:
 
     def __exit__(self, *exc):
         return False
+
+
+# ----------------------------------------------------------------------------- nothing clobbered (issue 8)
+
+
+def _complete_result(otb_folder, tmp_path):
+    root, _ = otb_folder
+    out = tmp_path / "res.txt"
+    assert main(["track", str(root), "--out", str(out), "--particles", "40", "--quiet"]) == 0
+    return root, out, out.read_bytes()
+
+
+def test_track_refuses_to_write_over_the_groundtruth(otb_folder, tmp_path, capsys):
+    root, _ = otb_folder
+    gt = root / "groundtruth_rect.txt"
+    before = gt.read_bytes()
+    assert main(["track", str(root), "--out", str(gt), "--particles", "40", "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert "ground truth" in err and str(gt) in err
+    assert gt.read_bytes() == before
+    other = tmp_path / "gt.txt"
+    other.write_bytes(before)
+    assert main(["track", str(root), "--groundtruth", str(other), "--out", str(other), "--quiet"]) == 2
+    assert other.read_bytes() == before
+
+
+def test_track_checks_the_outputs_before_tracking(otb_folder, tmp_path, capsys):
+    root, out, before = _complete_result(otb_folder, tmp_path)
+    capsys.readouterr()
+    not_a_folder = tmp_path / "file.txt"
+    not_a_folder.write_text("x")
+    video = not_a_folder / "v.mp4"
+    assert main(["track", str(root), "--out", str(out), "--video", str(video), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert str(video) in err and "not a folder" in err
+    assert out.read_bytes() == before  # the complete result is kept
+    assert (
+        main(["track", str(root), "--out", str(tmp_path / "v.mkv2"), "--video", str(tmp_path / "v.bmp"), "--quiet"])
+        == 2
+    )
+    assert ".bmp" in capsys.readouterr().err
+    assert not (tmp_path / "v.mkv2").exists()
+
+
+def test_track_failing_midway_writes_nothing(otb_folder, tmp_path, capsys):
+    root, out, before = _complete_result(otb_folder, tmp_path)
+    broken = tmp_path / "Broken"
+    (broken / "img").mkdir(parents=True)
+    for f in sorted((root / "img").iterdir()):
+        (broken / "img" / f.name).write_bytes(f.read_bytes())
+    (broken / "groundtruth_rect.txt").write_bytes((root / "groundtruth_rect.txt").read_bytes())
+    (broken / "img" / "0004.png").write_bytes(b"not a png")
+    capsys.readouterr()
+    assert main(["track", str(broken), "--out", str(out), "--particles", "40", "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert "0004.png" in err and f"nothing written to {out}" in err
+    assert out.read_bytes() == before
+
+
+def test_track_video_failing_after_tracking_keeps_the_complete_result(otb_folder, tmp_path, capsys, monkeypatch):
+    from smtmvt import visualize
+
+    root, _ = otb_folder
+    out = tmp_path / "res.txt"
+
+    def fail(self):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(visualize.VideoSink, "close", fail)
+    rc = main(
+        ["track", str(root), "--out", str(out), "--video", str(tmp_path / "v.gif"), "--particles", "40", "--quiet"]
+    )
+    assert rc == 2 and "disk full" in capsys.readouterr().err
+    assert len(read_boxes(out)) == 6  # tracking was complete: its result is written whole
+
+
+@pytest.mark.parametrize("value", ["0", "-1", "x"])
+def test_track_max_frames_must_be_positive(otb_folder, tmp_path, capsys, value):
+    root, _ = otb_folder
+    with pytest.raises(SystemExit) as info:
+        main(["track", str(root), "--out", str(tmp_path / "r.txt"), "--max-frames", value])
+    assert info.value.code == 2
+    assert f"--max-frames: expected a whole number >= 1, got {value!r}" in capsys.readouterr().err
+    assert not (tmp_path / "r.txt").exists()
+
+
+def test_track_box_may_start_with_a_minus_sign(otb_folder, tmp_path):
+    """``--box -5,10,20,20`` (partly left of the image) is a box, not an unknown option."""
+    root, _ = otb_folder
+    out = tmp_path / "r.txt"
+    assert (
+        main(
+            [
+                "track",
+                str(root),
+                "--out",
+                str(out),
+                "--box",
+                "-5,10,20,20",
+                "--max-frames",
+                "2",
+                "--particles",
+                "40",
+                "--quiet",
+            ]
+        )
+        == 0
+    )
+    assert out.read_text().splitlines()[0] == "-4,11,20,20"  # 1-based on disk
+
+
+def test_video_sink_refuses_a_frame_of_another_size(tmp_path):
+    """OpenCV's writer silently drops frames of another size (11 of 20 in issue 8)."""
+    from smtmvt.visualize import VideoSink
+
+    for name in ("v.avi", "v.gif"):
+        sink = VideoSink(tmp_path / name)
+        sink.add(np.zeros((24, 32, 3), np.uint8))
+        with pytest.raises(ValueError, match=r"frame 1 is 40x24 pixels, frame 0 is 32x24"):
+            sink.add(np.zeros((24, 40, 3), np.uint8))

@@ -36,7 +36,7 @@ def test_read_frame_grayscale_and_16bit(tmp_path):
     assert out.shape == (6, 8) and out.dtype == np.uint8
     np.testing.assert_array_equal(out, gray)
 
-    deep = (np.arange(48, dtype=np.uint16).reshape(6, 8) * 1000 + 7)
+    deep = np.arange(48, dtype=np.uint16).reshape(6, 8) * 1000 + 7
     cv2.imwrite(str(tmp_path / "d.png"), deep)
     out = read_frame(tmp_path / "d.png")
     assert out.dtype == np.uint16

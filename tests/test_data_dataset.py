@@ -12,7 +12,6 @@ from smtmvt.data import (
     load_attributes,
     open_dataset,
 )
-
 from test_data_sequence import make_otb
 
 
@@ -38,9 +37,7 @@ def bench(tmp_path):
 
 
 def test_list_dataset_names_sorted_and_targets_expanded(bench):
-    assert [e[0] for e in list_dataset(bench)] == [
-        "Alpha", "Bad", "beta", "Empty", "Jogging-1", "Jogging-2", "NoGt"
-    ]
+    assert [e[0] for e in list_dataset(bench)] == ["Alpha", "Bad", "beta", "Empty", "Jogging-1", "Jogging-2", "NoGt"]
 
 
 def test_open_dataset_collect_keeps_going_and_names_files(bench):
@@ -90,7 +87,7 @@ def test_flag_file_order_is_the_toolkits(tmp_path):
     att = tmp_path / "anno" / "att"
     att.mkdir(parents=True)
     # one flag at a time: position k of the file is OTB_FLAG_ORDER[k]
-    for k, code in enumerate(OTB_FLAG_ORDER):
+    for k in range(len(OTB_FLAG_ORDER)):
         flags = ["0"] * 11
         flags[k] = "1"
         (att / f"s{k}.txt").write_text(",".join(flags))
@@ -133,3 +130,26 @@ def test_table_file(tmp_path):
     path.write_text("A\tIV\na\tBC\nA\tOV\n")
     with pytest.raises(SequenceError, match="line 3.*twice"):
         load_attributes(path)
+
+
+def test_names_that_differ_only_in_case_or_separators_are_refused(tmp_path):
+    """``Seq_1`` and ``seq-1`` are one name to the report and to imports (matched by
+    canonical name): refuse both rather than let one row carry the other's score."""
+    root = tmp_path / "bench"
+    make_otb(root, "Seq_1", n=2)
+    make_otb(root, "seq-1", n=2)
+    make_otb(root, "Seq 2", n=2)
+    make_otb(root, "Good", n=2)
+    items = open_dataset(root, on_error="collect")
+    by_name = {(i.sequence if isinstance(i, SequenceError) else i.name): i for i in items}
+    assert set(by_name) == {"Good", "Seq 2", "Seq_1", "seq-1"}
+    assert not isinstance(by_name["Good"], SequenceError) and not isinstance(by_name["Seq 2"], SequenceError)
+    for name in ("Seq_1", "seq-1"):
+        err = by_name[name]
+        assert isinstance(err, SequenceError)
+        assert "'Seq_1'" in str(err) and "'seq-1'" in str(err) and "differ only in case" in str(err)
+    with pytest.raises(SequenceError, match="differ only in case"):
+        open_dataset(root)
+    # asking for one of them does not make the other go away
+    (item,) = open_dataset(root, sequences=["Seq_1"], on_error="collect")
+    assert isinstance(item, SequenceError)

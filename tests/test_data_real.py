@@ -1,7 +1,6 @@
 """smtmvt.data on the real OTB data in ../shared/data (skipped when it is absent)."""
 
 import numpy as np
-import pytest
 
 from smtmvt.data import attributes_of, load_attributes, open_dataset, open_sequence, read_boxes
 

@@ -25,8 +25,7 @@ def _frame(i, shape=(6, 8)):
     return img
 
 
-def make_otb(root, name="Seq", n=5, gt_lines=None, fmt="{:04d}.png", start=1, gt_name="groundtruth_rect.txt",
-             sep=","):
+def make_otb(root, name="Seq", n=5, gt_lines=None, fmt="{:04d}.png", start=1, gt_name="groundtruth_rect.txt", sep=","):
     """An OTB folder ``root/name`` with ``n`` frames and a ground truth of ``gt_lines`` lines."""
     folder = root / name
     (folder / "img").mkdir(parents=True)
@@ -152,7 +151,7 @@ def test_invalid_boxes_become_nan_rows(tmp_path):
     assert seq.annotated.tolist() == [False, True, False, False]
     assert np.isnan(seq.groundtruth[[0, 2, 3]]).all()
     with pytest.raises(ValueError, match="frame 0"):
-        seq.first_box
+        _ = seq.first_box
 
 
 def test_two_targets_pick_first_with_warning_or_the_one_asked(tmp_path):
@@ -240,7 +239,7 @@ def test_image_folder_sorted_naturally(tmp_path):
     assert seq.frame_names[:3] == ["img1.png", "img2.png", "img3.png"] and seq.frame_names[-1] == "img12.png"
     assert [red_of(f) for f in seq] == [10 * k for k in range(1, 13)]
     with pytest.raises(ValueError, match="no ground truth"):
-        seq.first_box
+        _ = seq.first_box
 
 
 def test_image_folder_with_groundtruth_beside(tmp_path):
@@ -333,3 +332,33 @@ def test_video_with_groundtruth(avi, tmp_path):
     gt.write_text("1,1,4,4\n" * 10)
     with pytest.raises(SequenceError, match="10 boxes.*9 frames"):
         open_sequence(avi, groundtruth=gt)
+
+
+# ------------------------------------------------------------------------ one frame size
+
+
+def test_a_frame_of_another_size_is_an_error_naming_it(tmp_path):
+    """Boxes refer to one pixel grid: a frame of another size (a resized or foreign image)
+    would silently shift every box; the first such frame is named (issue 8)."""
+    folder = make_otb(tmp_path, n=5)
+    cv2.imwrite(str(folder / "img" / "0004.png"), _frame(3, shape=(7, 8)))
+    seq = open_sequence(folder)
+    assert [red_of(seq[i]) for i in range(3)] == [0, 10, 20]
+    with pytest.raises(
+        SequenceError, match=r"frame 3 \(0004\.png\) is 8x7 pixels.*frame 0 \(0001\.png\) is 8x6"
+    ) as info:
+        seq[3]
+    assert info.value.frame == 3 and info.value.path.endswith("0004.png")
+    with pytest.raises(SequenceError, match="0004.png"):
+        list(seq)
+    fresh = open_sequence(folder)  # random access first: frame 0 is the reference all the same
+    with pytest.raises(SequenceError, match="frame 3"):
+        fresh[3]
+    assert red_of(fresh[4]) == 40
+
+
+def test_array_sequence_frames_of_another_size(tmp_path):
+    frames = [np.zeros((6, 8), np.uint8), np.zeros((6, 8), np.uint8), np.zeros((6, 9), np.uint8)]
+    seq = ArraySequence(frames, name="arr")
+    with pytest.raises(SequenceError, match=r"'arr'.*frame 2 \(frame 2\) is 9x6"):
+        list(seq)

@@ -13,12 +13,12 @@ import json
 import numpy as np
 import pytest
 
+from smtmvt.evaluation.imports import import_into_run
 from smtmvt.evaluation.metrics import aggregate, overlap_ratio, score_sequence
 from smtmvt.evaluation.published import (
     ATTRIBUTES,
     benchmark_label,
     canonical_name,
-    import_into_run,
     import_results,
     ivt_affine_to_rect,
     load_attribute_table,
@@ -227,14 +227,15 @@ def test_ivt_affine_results_track_an_easy_sequence(otb_results_dir, anno):
         np.testing.assert_allclose(np.median(r.boxes[:, 2:] / gt[:, 2:], axis=0), 1.0, atol=0.15)
 
 
-def test_short_mat_result_is_kept_short(otb_results_dir, tmp_path):
+def test_short_mat_result_is_kept_short(otb_dir, otb_results_dir, tmp_path):
     # CFWLB's files are 4 frames short: importing keeps them as they are (the report flags them)
     mat = otb_results_dir / "OPE-OTB100-mat" / "crossing_CFWLB.mat"
     run = tmp_path / "run"
     run.mkdir()
+    (run / "run.json").write_text(json.dumps({"dataset": str(otb_dir)}))
     written = import_into_run(run, mat)
-    assert written == {"CFWLB": ["crossing"]}
-    assert read_box_file(run / "results" / "CFWLB" / "crossing.txt").shape == (116, 4)
+    assert written == {"CFWLB": ["Crossing"]}  # the dataset's spelling
+    assert read_box_file(run / "results" / "CFWLB" / "Crossing.txt").shape == (116, 4)
 
 
 def test_read_otb_json_per_frame(otb_results_dir):

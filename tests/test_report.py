@@ -13,7 +13,6 @@ import pytest
 
 from smtmvt.evaluation.report import build_report
 
-
 # ----------------------------------------------------------------------------- independent scoring
 
 
@@ -38,8 +37,13 @@ def expected_scores(pred, gt):
     errs = [_err(p, g) for p, g in zip(pred, gt)]
     succ = [sum(i > t for i in ious) / len(ious) for t in [k * 0.05 for k in range(21)]]
     prec = [sum(e <= t for e in errs) / len(errs) for t in range(51)]
-    return {"avg_overlap": sum(ious) / len(ious), "auc": sum(succ) / 21, "precision20": prec[20],
-            "success": succ, "precision": prec}
+    return {
+        "avg_overlap": sum(ious) / len(ious),
+        "auc": sum(succ) / 21,
+        "precision20": prec[20],
+        "success": succ,
+        "precision": prec,
+    }
 
 
 # ----------------------------------------------------------------------------- synthetic run
@@ -78,19 +82,36 @@ def run(tmp_path):
 
     rd = tmp_path / "run"
     preds = {
-        "alpha": {"SeqA": _shifted(gts["SeqA"], 4), "SeqB": _shifted(gts["SeqB"], 12), "SeqC": _shifted(gts["SeqC"], 2)},
-        "beta": {"SeqA": _shifted(gts["SeqA"], 9, 2), "SeqB": _shifted(gts["SeqB"], 3), "SeqC": _shifted(gts["SeqC"], 1)[:5]},
+        "alpha": {
+            "SeqA": _shifted(gts["SeqA"], 4),
+            "SeqB": _shifted(gts["SeqB"], 12),
+            "SeqC": _shifted(gts["SeqC"], 2),
+        },
+        "beta": {
+            "SeqA": _shifted(gts["SeqA"], 9, 2),
+            "SeqB": _shifted(gts["SeqB"], 3),
+            "SeqC": _shifted(gts["SeqC"], 1)[:5],
+        },
     }
     for t, by_seq in preds.items():
         for s, rows in by_seq.items():
             _write(rd / "results" / t / f"{s}.txt", rows)
     for s, n in SEQS.items():  # alpha: 0.02 s per frame -> 50 fps; beta: no times
         _write(rd / "results" / "alpha" / "times" / f"{s}_time.txt", [[0.02]] * n)
-    (rd / "run.json").write_text(json.dumps({
-        "dataset": str(ds), "trackers": ["alpha", "beta", "gamma"], "sequences": list(SEQS),
-        "attributes": str(tmp_path / "attrs.txt"), "published": None}))
-    (rd / "errors.json").write_text(json.dumps([
-        {"tracker": "gamma", "sequence": None, "error": "unknown tracker 'gamma'"}]))
+    (rd / "run.json").write_text(
+        json.dumps(
+            {
+                "dataset": str(ds),
+                "trackers": ["alpha", "beta", "gamma"],
+                "sequences": list(SEQS),
+                "attributes": str(tmp_path / "attrs.txt"),
+                "published": None,
+            }
+        )
+    )
+    (rd / "errors.json").write_text(
+        json.dumps([{"tracker": "gamma", "sequence": None, "error": "unknown tracker 'gamma'"}])
+    )
     return {"dir": rd, "gts": gts, "preds": preds, "tmp": tmp_path}
 
 
@@ -116,15 +137,19 @@ def test_summary_numbers(run):
         assert tr["precision20"] == pytest.approx(mean_prec[20], abs=1e-12)
         np.testing.assert_allclose(tr["success"], mean_succ, atol=1e-12)
     # a non-trivial case: the two trackers differ and are not perfect
-    assert 0.2 < on_disk["trackers"]["beta"]["auc"] < on_disk["trackers"]["alpha"]["auc"] < 0.95 or \
-        0.2 < on_disk["trackers"]["alpha"]["auc"] < on_disk["trackers"]["beta"]["auc"] < 0.95
+    assert (
+        0.2 < on_disk["trackers"]["beta"]["auc"] < on_disk["trackers"]["alpha"]["auc"] < 0.95
+        or 0.2 < on_disk["trackers"]["alpha"]["auc"] < on_disk["trackers"]["beta"]["auc"] < 0.95
+    )
     # fps: frames / total time
     assert on_disk["trackers"]["alpha"]["sequences"]["SeqA"]["fps"] == pytest.approx(50.0)
     assert on_disk["trackers"]["alpha"]["fps"] == pytest.approx(50.0)
     assert on_disk["trackers"]["beta"]["sequences"]["SeqA"]["fps"] is None
     # attributes: IV = {SeqA}, OCC = {SeqA, SeqB}
-    assert on_disk["attributes"] == {"IV": {"name": "Illumination Variation", "sequences": ["SeqA"]},
-                                     "OCC": {"name": "Occlusion", "sequences": ["SeqA", "SeqB"]}}
+    assert on_disk["attributes"] == {
+        "IV": {"name": "Illumination Variation", "sequences": ["SeqA"]},
+        "OCC": {"name": "Occlusion", "sequences": ["SeqA", "SeqB"]},
+    }
     occ = on_disk["trackers"]["alpha"]["attributes"]["OCC"]
     e_a = expected_scores(run["preds"]["alpha"]["SeqA"], run["gts"]["SeqA"])
     e_b = expected_scores(run["preds"]["alpha"]["SeqB"], run["gts"]["SeqB"])
@@ -153,7 +178,7 @@ def test_short_result_file_is_an_error_and_the_rest_is_reported(run):
     # a malformed line names the file and the line
     (run["dir"] / "results" / "alpha" / "SeqB.txt").write_text("1,2,3,4\n1,2,oops,4\n" + "1,2,3,4\n" * 6)
     s2 = build_report(run["dir"], formats=("png",))
-    assert "results/alpha/SeqB.txt:2" in s2["trackers"]["alpha"]["errors"]["SeqB"]
+    assert "results/alpha/SeqB.txt, line 2" in s2["trackers"]["alpha"]["errors"]["SeqB"]
     assert set(s2["trackers"]["alpha"]["sequences"]) == {"SeqA", "SeqC"}
 
 
@@ -226,9 +251,16 @@ def test_published_curves_are_labelled_and_kept_out_of_the_table(run):
     for subset in ("ALL", "IV", "OCC"):
         d = pub / "OPE" / "FAKE" / "scores_cvpr13"
         d.mkdir(parents=True, exist_ok=True)
-        (d / f"{subset}.json").write_text(json.dumps({
-            "seqs": ["SeqA", "Other"], "overlapScores": [0.9, 0.1],
-            "successRateList": curve.tolist(), "precisionList": prec.tolist()}))
+        (d / f"{subset}.json").write_text(
+            json.dumps(
+                {
+                    "seqs": ["SeqA", "Other"],
+                    "overlapScores": [0.9, 0.1],
+                    "successRateList": curve.tolist(),
+                    "precisionList": prec.tolist(),
+                }
+            )
+        )
     s = build_report(run["dir"], published=pub, benchmark="cvpr13")
     assert s["published"]["trackers"]["FAKE"]["auc"] == pytest.approx(0.5)
     assert s["published"]["label"] == "OTB-2013"
@@ -268,7 +300,8 @@ def test_report_rebuilds_from_stored_results_only(run):
 def test_imported_mat_results_scored_on_our_sequences(otb_dir, otb_results_dir, tmp_path):
     """Import the toolkit's CSK .mat files into a run: they are scored by our metrics on our
     sequences (table) and reproduce the published OTB-100 per-sequence overlaps."""
-    from smtmvt.evaluation.published import import_into_run, load_published_scores
+    from smtmvt.evaluation.imports import import_into_run
+    from smtmvt.evaluation.published import load_published_scores
 
     rd = tmp_path / "run"
     rd.mkdir()
@@ -283,3 +316,69 @@ def test_imported_mat_results_scored_on_our_sequences(otb_dir, otb_results_dir, 
     assert "CSK" in (rd / "report" / "table.md").read_text()
     assert set(s["attributes"]) >= {"SV", "DEF", "OCC"}
     assert s["published"]["label"] == "OTB-100" and len(s["published"]["trackers"]) == 34
+
+
+# ----------------------------------------------------------------------------- issue 8: writes nowhere else
+
+
+def test_report_on_a_folder_that_is_not_a_run_creates_nothing(tmp_path, capsys):
+    from smtmvt.cli import main
+
+    folder = tmp_path / "photos"
+    folder.mkdir()
+    (folder / "a.jpg").write_bytes(b"x")
+    assert main(["report", str(folder)]) == 2
+    assert "not a run folder" in capsys.readouterr().err
+    assert [p.name for p in folder.iterdir()] == ["a.jpg"]
+    with pytest.raises(ValueError, match="not a run folder"):
+        build_report(folder)
+    assert [p.name for p in folder.iterdir()] == ["a.jpg"]
+
+
+def test_a_link_in_the_report_folder_is_replaced_not_written_through(run):
+    build_report(run["dir"], formats=("png",))
+    outside = run["tmp"] / "my-paper-table.md"
+    outside.write_text("my own table")
+    table = run["dir"] / "report" / "table.md"
+    table.unlink()
+    table.symlink_to(outside)
+    build_report(run["dir"], formats=("png",))
+    assert outside.read_text() == "my own table"
+    assert not table.is_symlink() and "Average overlap per sequence" in table.read_text()
+
+
+def test_a_pipe_in_a_sequence_name_keeps_the_markdown_table_whole(run):
+    import matplotlib.image
+
+    ds = Path(json.loads((run["dir"] / "run.json").read_text())["dataset"])
+    name = "Left|Right"
+    gt = _gt(5, 0)
+    _write(ds / name / "groundtruth_rect.txt", gt)
+    (ds / name / "img").mkdir()
+    for i in range(5):
+        matplotlib.image.imsave(ds / name / "img" / f"{i + 1:04d}.png", np.zeros((64, 96)), cmap="gray")
+    _write(run["dir"] / "results" / "alpha" / f"{name}.txt", _shifted(gt, 3))
+    meta = json.loads((run["dir"] / "run.json").read_text())
+    meta["sequences"].append(name)
+    (run["dir"] / "run.json").write_text(json.dumps(meta))
+    s = build_report(run["dir"], formats=("png",))
+    assert name in s["trackers"]["alpha"]["sequences"]
+    md = (run["dir"] / "report" / "table.md").read_text()
+    rows = [line for line in md.splitlines() if line.startswith("| ")]
+    for line in rows:  # every row has the header's number of columns
+        assert len(re.findall(r"(?<!\\)\|", line)) == 5, line
+    assert any(line.startswith("| Left\\|Right | ") for line in rows)
+    assert "<td>Left|Right</td>" in (run["dir"] / "report" / "index.html").read_text()
+
+
+def test_our_result_files_are_read_strictly(run):
+    """A blank line in the middle of a result file would shift every later box by a frame:
+    our own files are read by the strict reader, which names the line."""
+    rows = run["preds"]["alpha"]["SeqC"]
+    path = run["dir"] / "results" / "alpha" / "SeqC.txt"
+    path.write_text(
+        "".join(",".join(f"{v:g}" for v in r) + "\n" + ("\n" if i == 1 else "") for i, r in enumerate(rows))
+    )
+    s = build_report(run["dir"], formats=("png",))
+    assert "SeqC" not in s["trackers"]["alpha"]["sequences"]
+    assert "results/alpha/SeqC.txt, line 3: blank line" in s["trackers"]["alpha"]["errors"]["SeqC"]

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import functools
 import json
+import os
 from pathlib import Path
 
 import cv2
@@ -41,10 +42,10 @@ def make_otb_dataset(root, specs=None, n_frames=20, size=(120, 160), seed=0) -> 
     h, w = size
     for name, spec in specs.items():
         bg = cv2.GaussianBlur(rng.integers(0, 256, (h, w, 3)).astype(np.uint8), (0, 0), 3)
-        bg = cv2.normalize(bg, None, 40, 160, cv2.NORM_MINMAX)
+        bg = cv2.normalize(bg, np.empty_like(bg), 40, 160, cv2.NORM_MINMAX)
         tw, th = spec["side"]
-        tex = rng.integers(0, 256, (th // 4 + 1, tw // 4 + 1, 3)).astype(np.uint8)
-        tex = cv2.resize(tex, (tw, th), interpolation=cv2.INTER_NEAREST)
+        coarse = rng.integers(0, 256, (th // 4 + 1, tw // 4 + 1, 3)).astype(np.uint8)
+        tex = cv2.resize(coarse, (tw, th), interpolation=cv2.INTER_NEAREST)
         tex[..., 0] = np.maximum(tex[..., 0], 150)
         img = root / name / "img"
         img.mkdir(parents=True, exist_ok=True)
@@ -125,6 +126,17 @@ class CrashAt(ConstantVelocity):
         return super().update(frame)
 
 
+class DieAt(CrashAt):
+    """Ends its process (as a segfault would) in ``update`` at frame ``frame`` of the sequence
+    whose first box is ``first_box``."""
+
+    def update(self, frame):
+        self.i += 1
+        if self.armed and self.i == self.frame:
+            os._exit(3)
+        return ConstantVelocity.update(self, frame)
+
+
 @pytest.fixture
 def registered():
     """Register test trackers; unregistered afterwards."""
@@ -177,8 +189,7 @@ def test_run_writes_the_agreed_layout(dataset, tmp_path, registered):
 
 
 def test_results_equal_driving_the_adapter_directly(dataset, tmp_path):
-    run = run_evaluation(dataset, "opencv-csrt", tmp_path / "run", sequences="SquareB", progress=False,
-                         report=False)
+    run = run_evaluation(dataset, "opencv-csrt", tmp_path / "run", sequences="SquareB", progress=False, report=False)
     seq = open_otb_sequence(dataset / "SquareB")
     t = make_tracker("opencv-csrt", seed=sequence_seed("SquareB"))
     t.init(seq[0], seq.first_box)
@@ -201,8 +212,15 @@ def test_seeds_per_sequence_are_deterministic(dataset, tmp_path, registered):
     assert len(set(seeds[:3])) == 3
     # a base seed in the tracker options shifts every sequence's seed
     Recorder.calls.clear()
-    run_evaluation(dataset, ["test-rec"], tmp_path / "c", sequences=["SquareA"], progress=False, report=False,
-                   tracker_options={"test-rec": {"seed": 7, "step": (0.0, 0.0)}})
+    run_evaluation(
+        dataset,
+        ["test-rec"],
+        tmp_path / "c",
+        sequences=["SquareA"],
+        progress=False,
+        report=False,
+        tracker_options={"test-rec": {"seed": 7, "step": (0.0, 0.0)}},
+    )
     assert Recorder.calls == [(first_box_of(dataset, "SquareA"), sequence_seed("SquareA", 7))]
 
 
@@ -264,8 +282,9 @@ def test_crash_in_one_pair_is_recorded_and_rerun_completes(dataset, tmp_path, re
 
 @pytest.mark.parametrize("workers", [1, 2])
 def test_progress_bars_count_pairs_and_frames(dataset, tmp_path, capsys, workers):
-    run_evaluation(dataset, ["opencv-kcf"], tmp_path / "run", sequences=["SquareA", "SquareC"], report=False,
-                   workers=workers)
+    run_evaluation(
+        dataset, ["opencv-kcf"], tmp_path / "run", sequences=["SquareA", "SquareC"], report=False, workers=workers
+    )
     err = capsys.readouterr().err
     assert "2/2" in err and "40/40" in err and "41/40" not in err
 
@@ -293,8 +312,12 @@ def test_bad_input_is_reported_and_the_rest_runs(bad_dataset, tmp_path):
     assert run.done == [("opencv-kcf", "Good")]
     assert len(result_path(run_dir, "opencv-kcf", "Good").read_text().splitlines()) == 20
     errors = {(e["tracker"], e["sequence"]): e["error"] for e in errors_of(run_dir)}
-    assert set(errors) == {("nonesuch", None), ("opencv-kcf", "SquareA"), ("opencv-kcf", "SquareB"),
-                           ("opencv-kcf", "SquareC")}
+    assert set(errors) == {
+        ("nonesuch", None),
+        ("opencv-kcf", "SquareA"),
+        ("opencv-kcf", "SquareB"),
+        ("opencv-kcf", "SquareC"),
+    }
     assert "0005.png" in errors[("opencv-kcf", "SquareA")]
     assert "groundtruth_rect.txt" in errors[("opencv-kcf", "SquareB")]
     assert "line 3" in errors[("opencv-kcf", "SquareB")]
@@ -308,8 +331,9 @@ def test_bad_input_is_reported_and_the_rest_runs(bad_dataset, tmp_path):
 
 
 def test_unknown_sequence_name_is_an_error_and_others_run(dataset, tmp_path):
-    run = run_evaluation(dataset, ["opencv-kcf"], tmp_path / "run", sequences="squarea,Nowhere",
-                         progress=False, report=False)
+    run = run_evaluation(
+        dataset, ["opencv-kcf"], tmp_path / "run", sequences="squarea,Nowhere", progress=False, report=False
+    )
     assert run.done == [("opencv-kcf", "SquareA")]  # names match case-insensitively
     (err,) = run.errors
     assert err["sequence"] == "Nowhere" and "SquareB" in err["error"]  # lists what exists
@@ -320,8 +344,9 @@ def test_whole_run_problems_raise(dataset, tmp_path):
         run_evaluation(tmp_path / "nope", ["opencv-kcf"], tmp_path / "run", progress=False, report=False)
     with pytest.raises(ValueError, match="no tracker"):
         run_evaluation(dataset, "", tmp_path / "run", progress=False, report=False)
-    run_evaluation(dataset, ["opencv-kcf"], tmp_path / "run", sequences=["SquareA"], progress=False,
-                   report=False, max_frames=3)
+    run_evaluation(
+        dataset, ["opencv-kcf"], tmp_path / "run", sequences=["SquareA"], progress=False, report=False, max_frames=3
+    )
     other = make_otb_dataset(tmp_path / "other", specs={"SquareA": DEFAULT_SPECS["SquareA"]}, n_frames=3)
     with pytest.raises(ValueError, match="another --out"):
         run_evaluation(other, ["opencv-kcf"], tmp_path / "run", progress=False, report=False)
@@ -329,10 +354,16 @@ def test_whole_run_problems_raise(dataset, tmp_path):
 
 def test_run_json_is_merged_on_restart(dataset, tmp_path):
     run_dir = tmp_path / "run"
-    run_evaluation(dataset, ["opencv-kcf"], run_dir, sequences=["SquareA"], progress=False, report=False,
-                   max_frames=4)
-    run_evaluation(dataset, ["opencv-mosse", "opencv-kcf"], run_dir, sequences=["SquareC"], progress=False,
-                   report=False, max_frames=4)
+    run_evaluation(dataset, ["opencv-kcf"], run_dir, sequences=["SquareA"], progress=False, report=False, max_frames=4)
+    run_evaluation(
+        dataset,
+        ["opencv-mosse", "opencv-kcf"],
+        run_dir,
+        sequences=["SquareC"],
+        progress=False,
+        report=False,
+        max_frames=4,
+    )
     info = json.loads((run_dir / "run.json").read_text())
     assert info["trackers"] == ["opencv-kcf", "opencv-mosse"]
     assert info["sequences"] == ["SquareA", "SquareC"]
@@ -368,23 +399,26 @@ def test_process_pool_equals_sequential(dataset, tmp_path, sequential_run):
 def cluster():
     """A real Dask cluster of two worker processes (one thread each)."""
     distributed = pytest.importorskip("distributed")
-    with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None,
-                                  silence_logs=40) as c:
+    with distributed.LocalCluster(
+        n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None, silence_logs=40
+    ) as c:
         yield c
 
 
 def test_dask_local_cluster_equals_sequential(dataset, tmp_path, sequential_run, cluster):
     import distributed
 
-    run = run_evaluation(dataset, PARALLEL_TRACKERS, tmp_path / "run", scheduler=cluster.scheduler_address,
-                         progress=False, report=False)
+    run = run_evaluation(
+        dataset, PARALLEL_TRACKERS, tmp_path / "run", scheduler=cluster.scheduler_address, progress=False, report=False
+    )
     assert run.ok and len(run.done) == 12
     assert read_result_texts(tmp_path / "run") == sequential_run
     # errors travel back from the cluster too, and the rest is skipped on restart
     result_path(tmp_path / "run", "opencv-kcf", "SquareC").unlink()
     with distributed.Client(cluster) as client:
-        run = run_evaluation(dataset, ["opencv-kcf", "nonesuch"], tmp_path / "run", scheduler=client,
-                             progress=False, report=False)
+        run = run_evaluation(
+            dataset, ["opencv-kcf", "nonesuch"], tmp_path / "run", scheduler=client, progress=False, report=False
+        )
     assert run.done == [("opencv-kcf", "SquareC")] and len(run.skipped) == 2
     assert run.failed == [("nonesuch", None)]
     assert read_result_texts(tmp_path / "run") == sequential_run
@@ -422,5 +456,103 @@ def test_unreachable_scheduler_is_a_clear_error(dataset, tmp_path):
         port = s.getsockname()[1]
     with dask.config.set({"distributed.comm.timeouts.connect": "2s"}):
         with pytest.raises(OSError, match=f"cannot connect to the Dask scheduler at tcp://127.0.0.1:{port}"):
-            run_evaluation(dataset, ["opencv-kcf"], tmp_path / "run", scheduler=f"tcp://127.0.0.1:{port}",
-                           progress=False, report=False)
+            run_evaluation(
+                dataset,
+                ["opencv-kcf"],
+                tmp_path / "run",
+                scheduler=f"tcp://127.0.0.1:{port}",
+                progress=False,
+                report=False,
+            )
+
+
+# ----------------------------------------------------------------------------- the run folder keeps its settings (issue 8)
+
+
+def test_a_different_frame_limit_is_refused_and_nothing_is_lost(dataset, tmp_path):
+    run_dir = tmp_path / "run"
+    run_evaluation(dataset, ["opencv-kcf"], run_dir, progress=False, report=False)
+    texts = read_result_texts(run_dir)
+    with pytest.raises(ValueError, match=rf"{run_dir} was run with all frames.*--max-frames 5.*--overwrite"):
+        run_evaluation(dataset, ["opencv-kcf"], run_dir, progress=False, report=False, max_frames=5)
+    assert read_result_texts(run_dir) == texts  # every full result kept
+    run = run_evaluation(dataset, ["opencv-kcf"], run_dir, progress=False, report=False, max_frames=5, overwrite=True)
+    assert len(run.done) == 3 and any("--overwrite: removed" in n for n in run.notes)
+    assert all(len(t.splitlines()) == 5 for t in read_result_texts(run_dir).values())
+    assert json.loads((run_dir / "run.json").read_text())["max_frames"] == 5
+
+
+def test_a_corrupt_line_is_recomputed_even_with_the_right_line_count(dataset, tmp_path):
+    run_dir = tmp_path / "run"
+    run_evaluation(dataset, ["opencv-kcf"], run_dir, sequences=["SquareA"], progress=False, report=False)
+    rp = result_path(run_dir, "opencv-kcf", "SquareA")
+    full = rp.read_text()
+    lines = full.splitlines(keepends=True)
+    lines[4] = "12,oops,3,4\n"
+    rp.write_text("".join(lines))
+    run = run_evaluation(dataset, ["opencv-kcf"], run_dir, sequences=["SquareA"], progress=False, report=False)
+    assert run.done == [("opencv-kcf", "SquareA")]
+    assert any("line 5" in n and "recomputing" in n for n in run.notes)
+    assert rp.read_text() == full
+
+
+def test_evaluate_does_not_take_imported_results_for_its_own(dataset, tmp_path, registered):
+    """A tracker folder made by ``report --import`` is never counted as computed results."""
+    from smtmvt.evaluation.imports import import_into_run
+
+    run_dir = tmp_path / "run"
+    run_evaluation(dataset, ["opencv-kcf"], run_dir, sequences=["SquareA"], progress=False, report=False)
+    src = tmp_path / "foreign" / "test-cv"
+    src.mkdir(parents=True)
+    (src / "SquareA.txt").write_text(result_path(run_dir, "opencv-kcf", "SquareA").read_text())
+    assert import_into_run(run_dir, src) == {"test-cv": ["SquareA"]}
+    registered("test-cv", ConstantVelocity)
+    run = run_evaluation(dataset, ["test-cv"], run_dir, sequences=["SquareA"], progress=False, report=False)
+    assert run.failed == [("test-cv", None)]
+    assert "imported" in run.errors[0]["error"] and "results/test-cv" in run.errors[0]["error"]
+    assert result_path(run_dir, "test-cv", "SquareA").read_text() == (src / "SquareA.txt").read_text()
+
+
+def test_a_second_run_on_a_locked_folder_is_a_clear_error(dataset, tmp_path):
+    from smtmvt.evaluation.rundir import RunDir
+
+    run_dir = tmp_path / "run"
+    with RunDir(run_dir).locked("smtmvt evaluate", create=True):
+        with pytest.raises(ValueError, match=f"{run_dir} is in use by smtmvt evaluate"):
+            run_evaluation(dataset, ["opencv-kcf"], run_dir, progress=False, report=False)
+    assert not (run_dir / "results").exists() and not (run_dir / "run.json").exists()
+
+
+def test_opencv_mil_resumed_or_parallel_equals_uninterrupted(dataset, tmp_path):
+    """MIL draws from an OpenCV random state that ``setRNGSeed`` does not reset: each pair runs
+    in a fresh process, so the boxes do not depend on what a process ran before."""
+    seqs = ["SquareA", "SquareB", "SquareC"]
+    whole = tmp_path / "whole"
+    run_evaluation(dataset, ["opencv-mil"], whole, sequences=seqs, progress=False, report=False)
+    texts = read_result_texts(whole)
+    resumed = tmp_path / "resumed"
+    run_evaluation(dataset, ["opencv-mil"], resumed, sequences=seqs, progress=False, report=False)
+    result_path(resumed, "opencv-mil", "SquareC").unlink()  # run third the first time, first now
+    run = run_evaluation(dataset, ["opencv-mil"], resumed, sequences=seqs, progress=False, report=False)
+    assert run.done == [("opencv-mil", "SquareC")]
+    assert read_result_texts(resumed) == texts
+    parallel = tmp_path / "parallel"
+    run_evaluation(dataset, ["opencv-mil"], parallel, sequences=seqs, workers=2, progress=False, report=False)
+    assert read_result_texts(parallel) == texts
+
+
+def evaluate_cli(dataset, run_dir, *args) -> int:
+    """``smtmvt evaluate --dataset DATASET --out RUN_DIR ARGS...`` in this process (exit status)."""
+    from smtmvt.cli import main
+
+    return main(["evaluate", "--dataset", str(dataset), "--out", str(run_dir), *args])
+
+
+def test_a_worker_that_dies_fails_its_pair_only(dataset, tmp_path, registered):
+    """A worker process that dies mid-pair is replaced; its pair is an error, the rest completes."""
+    registered("test-die", functools.partial(DieAt, first_box_of(dataset, "SquareB"), 4))
+    run = run_evaluation(dataset, ["test-die"], tmp_path / "run", workers=2, progress=False, report=False)
+    assert sorted(run.done) == [("test-die", "SquareA"), ("test-die", "SquareC")]
+    (err,) = run.errors
+    assert err["sequence"] == "SquareB" and "worker failed (exit code 3" in err["error"]
+    assert not result_path(tmp_path / "run", "test-die", "SquareB").exists()

@@ -13,10 +13,8 @@ import cv2
 import numpy as np
 import pytest
 
-from smtmvt.evaluation import trackers as tr
 from smtmvt.evaluation.trackers import (
     EvalTracker,
-    OpenCVTracker,
     UnknownTrackerError,
     available_trackers,
     covering_rect,
@@ -322,3 +320,40 @@ def test_tld_small_target_fix_on_crossing(otb_dir):
     frames, gt = _real(otb_dir, "Crossing", 60)
     out = track(make_tracker("opencv-tld", seed=0), frames, gt[0])
     assert mean_iou(out, gt) > 0.25
+
+
+# ----------------------------------------------------------------------------- registry metadata (issues 6 and 8)
+
+
+def test_smtmvt_paper_is_the_paper_configuration():
+    from smtmvt import TrackerConfig
+
+    assert {"smtmvt", "smtmvt-paper"} <= set(available_trackers())
+    paper = make_tracker("smtmvt-paper", seed=3)
+    assert paper.config == TrackerConfig.paper(seed=3)
+    assert make_tracker("smtmvt-paper", seed=3, n_particles=50).config == TrackerConfig.paper(seed=3, n_particles=50)
+    assert make_tracker("smtmvt", seed=3).config == TrackerConfig(seed=3)
+
+
+def test_determinism_and_fresh_process_are_declared():
+    from smtmvt.evaluation.trackers import tracker_spec
+
+    for name in ("opencv-csrt", "opencv-kcf", "opencv-mosse", "opencv-medianflow", "opencv-boosting"):
+        assert tracker_spec(name).deterministic and not tracker_spec(name).fresh_process, name
+    assert tracker_spec("opencv-mil").fresh_process and not tracker_spec("opencv-mil").deterministic
+    assert tracker_spec("opencv-tld").fresh_process and tracker_spec("opencv-tld").deterministic
+    for name in ("smtmvt", "smtmvt-paper", "smtmvt-l1t"):
+        assert not tracker_spec(name).deterministic, name
+
+    class Declared:
+        deterministic = True
+
+        def init(self, frame, box): ...
+
+        def update(self, frame): ...
+
+    register_tracker("test-declared", Declared)
+    try:
+        assert tracker_spec("test-declared").deterministic  # the factory's own attribute
+    finally:
+        unregister_tracker("test-declared")

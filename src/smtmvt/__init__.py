@@ -10,10 +10,10 @@ Public API::
 
 __version__ = "0.1.0"
 
-from .config import TrackerConfig  # noqa: E402
-from .data import Sequence, SequenceError, open_sequence, read_boxes, write_boxes  # noqa: E402
-from .solvers import solve_smtmvt  # noqa: E402
-from .tracker import Tracker, TrackResult  # noqa: E402
+from .config import TrackerConfig
+from .data import Sequence, SequenceError, open_sequence, read_boxes, write_boxes
+from .solvers import solve_smtmvt
+from .tracker import Tracker, TrackResult
 
 __all__ = [
     "Sequence",

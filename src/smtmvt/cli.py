@@ -8,7 +8,10 @@ them into one argparse parser. A sub-command module exposes
 from __future__ import annotations
 
 import argparse
+import contextlib
+import signal
 import sys
+import threading
 
 __all__ = ["main", "build_parser"]
 
@@ -32,14 +35,42 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def main(argv=None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised in the main thread so that a command stops as it does on Ctrl-C:
+    ``finally`` blocks run, worker processes are ended, nothing partial is written."""
+
+    signum = signal.SIGTERM
+
+
+@contextlib.contextmanager
+def _sigterm_as_interrupt():
+    def handler(signum, frame):
+        raise Terminated()
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, handler)
     try:
-        return int(args.func(args) or 0)
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return 130
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def main(argv=None) -> int:
+    """Run one sub-command. Exit status: its own (0, or 1 for partial failures), 2 for bad
+    input (one ``error:`` line), 130 after Ctrl-C, 143 after SIGTERM."""
+    from .commands.args import join_negative_values
+
+    parser = build_parser()
+    args = parser.parse_args(join_negative_values(list(sys.argv[1:] if argv is None else argv)))
+    try:
+        with _sigterm_as_interrupt():
+            return int(args.func(args) or 0)
+    except KeyboardInterrupt as exc:
+        terminated = isinstance(exc, Terminated)
+        print("terminated" if terminated else "interrupted", file=sys.stderr)
+        return 128 + (signal.SIGTERM if terminated else signal.SIGINT)
     except (ValueError, FileNotFoundError, OSError) as exc:
         # Bad input: one clear line naming the file / frame / value at fault.
         print(f"smtmvt {args.command}: error: {exc}", file=sys.stderr)

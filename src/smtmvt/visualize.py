@@ -2,12 +2,17 @@
 
 from __future__ import annotations
 
+import io
+import os
 from pathlib import Path
+from typing import Any
 
 import cv2
 import numpy as np
 
-__all__ = ["draw_box", "VideoSink", "to_display_rgb"]
+from .data import write_bytes_atomic
+
+__all__ = ["draw_box", "VideoSink", "VIDEO_OUTPUTS", "to_display_rgb"]
 
 
 def to_display_rgb(frame: np.ndarray) -> np.ndarray:
@@ -35,44 +40,83 @@ def draw_box(frame: np.ndarray, box, color=(255, 0, 0), label: str | None = None
     return img
 
 
-class VideoSink:
-    """Write RGB frames to ``path``: ``.gif`` via imageio, anything else via OpenCV.
+#: File types :class:`VideoSink` writes (``.gif`` by imageio, the others by OpenCV).
+VIDEO_OUTPUTS = (".mp4", ".avi", ".gif")
 
-    Use as a context manager; frames may be added one at a time.
+
+class VideoSink:
+    """Write RGB frames to ``path``: ``.gif`` via imageio, ``.mp4``/``.avi`` via OpenCV.
+
+    Frames go to a temporary file beside ``path`` that :meth:`close` renames to ``path``,
+    so ``path`` holds either its old content or the whole new video, never a part;
+    :meth:`discard` drops what was added. As a context manager: ``close`` on success,
+    ``discard`` on an exception. Every frame must have the first frame's size (OpenCV's
+    writer would silently drop the others).
     """
 
     def __init__(self, path, fps: float = 20.0):
         self.path = Path(path)
+        if self.path.suffix.lower() not in VIDEO_OUTPUTS:
+            raise ValueError(
+                f"video {self.path}: unsupported type {self.path.suffix!r} (use {', '.join(VIDEO_OUTPUTS)})"
+            )
         self.fps = fps
-        self._writer = None
-        self._gif_frames = []
-        self.path.parent.mkdir(parents=True, exist_ok=True)
+        self._writer: cv2.VideoWriter | None = None
+        self._gif_frames: list[Any] = []  # (H, W, 3) uint8 RGB frames
+        self._size: tuple | None = None  # (H, W) of frame 0
+        self._count = 0
+        self._tmp = self.path.with_name(f".{self.path.stem}.partial{self.path.suffix}")
 
     def add(self, frame_rgb: np.ndarray) -> None:
         img = to_display_rgb(frame_rgb)
+        size = img.shape[:2]
+        if self._size is None:
+            self._size = size
+        elif size != self._size:
+            raise ValueError(
+                f"video {self.path}: frame {self._count} is {size[1]}x{size[0]} pixels, "
+                f"frame 0 is {self._size[1]}x{self._size[0]}: all frames of a video must have one size"
+            )
+        self._count += 1
         if self.path.suffix.lower() == ".gif":
             self._gif_frames.append(img)
             return
         if self._writer is None:
-            fourcc = cv2.VideoWriter_fourcc(*("mp4v" if self.path.suffix.lower() == ".mp4" else "MJPG"))
+            self._tmp.parent.mkdir(parents=True, exist_ok=True)
+            fourcc = cv2.VideoWriter.fourcc(*("mp4v" if self.path.suffix.lower() == ".mp4" else "MJPG"))
             h, w = img.shape[:2]
-            self._writer = cv2.VideoWriter(str(self.path), fourcc, self.fps, (w, h))
+            self._writer = cv2.VideoWriter(str(self._tmp), fourcc, self.fps, (w, h))
             if not self._writer.isOpened():
                 raise OSError(f"cannot open video writer for {self.path}")
         self._writer.write(img[:, :, ::-1])
 
     def close(self) -> None:
+        """Finish the video and put it at ``path`` (nothing is written without frames)."""
         if self._gif_frames:
             import imageio.v2 as imageio
 
-            imageio.mimsave(self.path, self._gif_frames, duration=1.0 / self.fps, loop=0)
+            buf = io.BytesIO()
+            imageio.mimsave(buf, self._gif_frames, format="GIF", duration=1.0 / self.fps, loop=0)
             self._gif_frames = []
+            write_bytes_atomic(self.path, buf.getvalue())
         if self._writer is not None:
             self._writer.release()
             self._writer = None
+            os.replace(self._tmp, self.path)
+
+    def discard(self) -> None:
+        """Drop the frames added so far; ``path`` is left as it was."""
+        self._gif_frames = []
+        if self._writer is not None:
+            self._writer.release()
+            self._writer = None
+        self._tmp.unlink(missing_ok=True)
 
     def __enter__(self):
         return self
 
-    def __exit__(self, *exc):
-        self.close()
+    def __exit__(self, exc_type, *exc):
+        if exc_type is None:
+            self.close()
+        else:
+            self.discard()

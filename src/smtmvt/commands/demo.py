@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .args import positive_int
+
 __all__ = ["add_parser", "run_demo"]
 
 
@@ -19,7 +21,7 @@ def add_parser(sub) -> None:
         "an annotated GIF, a per-frame overlap plot and the result file into --out.",
     )
     p.add_argument("--out", default="demo-output", help="output folder (default: demo-output)")
-    p.add_argument("--frames", type=int, default=120, help="number of frames (default 120)")
+    p.add_argument("--frames", type=positive_int, default=120, help="number of frames (default 120)")
     p.add_argument("--seed", type=int, default=0, help="random seed")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run_demo)
@@ -47,8 +49,9 @@ def run_demo(args) -> int:
     elapsed = 0.0
     run = track_frames(tracker, seq.frames, seq.groundtruth[0])
     with VideoSink(out / "demo.gif", fps=15) as sink:
-        for i, (frame, box, seconds) in enumerate(tqdm(run, total=len(seq), unit="frame", desc="demo",
-                                                        disable=args.quiet)):
+        for i, (frame, box, seconds) in enumerate(
+            tqdm(run, total=len(seq), unit="frame", desc="demo", disable=args.quiet)
+        ):
             boxes[i] = box
             elapsed += seconds
             img = draw_box(frame, seq.groundtruth[i], (0, 255, 0), thickness=1)
@@ -70,9 +73,15 @@ def run_demo(args) -> int:
     fig.savefig(out / "overlap.png", dpi=120)
     plt.close(fig)
 
-    summary = {"frames": len(seq), "mean_overlap": float(overlaps.mean()),
-               "fps": len(seq) / elapsed, "events": seq.events}
+    summary = {
+        "frames": len(seq),
+        "mean_overlap": float(overlaps.mean()),
+        "fps": len(seq) / elapsed,
+        "events": seq.events,
+    }
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
-    print(f"demo: {len(seq)} frames, mean overlap {overlaps.mean():.3f}, "
-          f"{len(seq) / elapsed:.1f} fps; wrote {out}/demo.gif, overlap.png, demo_result.txt")
+    print(
+        f"demo: {len(seq)} frames, mean overlap {overlaps.mean():.3f}, "
+        f"{len(seq) / elapsed:.1f} fps; wrote {out}/demo.gif, overlap.png, demo_result.txt"
+    )
     return 0

@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 import argparse
+import sys
+from pathlib import Path
 
 import numpy as np
 
-__all__ = ["add_parser", "run_track", "parse_box"]
+from .args import check_writable, positive_int, same_file
+
+__all__ = ["add_parser", "run_track", "parse_box", "check_outputs"]
 
 
 def parse_box(text: str) -> tuple:
@@ -29,30 +33,54 @@ def add_parser(sub) -> None:
         "track",
         help="track an object through a sequence, write an OTB result file",
         description="Track one object. SOURCE is an OTB folder (img/ + groundtruth_rect.txt), a video "
-        "file, a folder of images or a glob pattern. Writes one 1-based 'x,y,w,h' line per frame.",
+        "file, a folder of images or a glob pattern. Writes one 1-based 'x,y,w,h' line per frame, "
+        "once every frame is tracked (an interrupted or failed run writes nothing).",
     )
     p.add_argument("source", help="OTB folder, video file, image folder or glob pattern")
     p.add_argument("--out", required=True, help="result file (OTB format, 1-based x,y,w,h per line)")
-    p.add_argument("--box", type=parse_box, default=None,
-                   help="initial box x,y,w,h in 0-based pixels (as in the Python API); "
-                   "default: the first ground-truth box of SOURCE")
+    p.add_argument(
+        "--box",
+        type=parse_box,
+        default=None,
+        help="initial box x,y,w,h in 0-based pixels (as in the Python API); "
+        "default: the first ground-truth box of SOURCE",
+    )
     p.add_argument("--groundtruth", default=None, help="ground-truth file for SOURCE (OTB format)")
     p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same boxes)")
-    p.add_argument("--max-frames", type=int, default=None, help="stop after this many frames")
-    p.add_argument("--particles", type=int, default=None, help="number of particles (default 400)")
+    p.add_argument("--max-frames", type=positive_int, default=None, help="stop after this many frames")
+    p.add_argument("--particles", type=positive_int, default=None, help="number of particles (default 400)")
     p.add_argument("--video", default=None, help="write an annotated video (.mp4, .avi or .gif)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run_track)
 
 
-def run_track(args) -> int:
-    from tqdm import tqdm
+def check_outputs(args, seq) -> None:
+    """Refuse, before any tracking, outputs that cannot be written or would destroy inputs.
 
+    ``--out`` and ``--video`` must be creatable, differ from each other and from the
+    sequence's ground truth and frame files; ``--video`` must be a type we write.
+    """
+    from ..visualize import VIDEO_OUTPUTS
+
+    outputs = [("--out", args.out)] + ([("--video", args.video)] if args.video else [])
+    inputs = [("ground truth", f) for f in (seq.groundtruth_file, args.groundtruth) if f is not None]
+    inputs += [("frame file", f) for f in getattr(seq, "files", [seq.source])]
+    for option, path in outputs:
+        check_writable(path, option)
+        for kind, source in inputs:
+            if same_file(path, source):
+                raise ValueError(f"{option} {path} is the sequence's {kind}: refusing to write over it")
+    if args.video:
+        if Path(args.video).suffix.lower() not in VIDEO_OUTPUTS:
+            raise ValueError(f"--video {args.video}: unsupported type (use {', '.join(VIDEO_OUTPUTS)})")
+        if same_file(args.video, args.out):
+            raise ValueError(f"--video and --out are the same file: {args.out}")
+
+
+def run_track(args) -> int:
     from ..config import TrackerConfig
     from ..data import open_sequence, write_boxes
-    from ..evaluation.metrics import overlap_ratio
-    from ..tracker import Tracker, track_frames
-    from ..visualize import VideoSink, draw_box
+    from ..tracker import Tracker
 
     seq = open_sequence(args.source, groundtruth=args.groundtruth)
     if args.box is not None:
@@ -61,22 +89,45 @@ def run_track(args) -> int:
         box0 = tuple(seq.first_box)
     else:
         raise ValueError(f"{args.source}: no ground truth to start from; give --box x,y,w,h")
+    check_outputs(args, seq)
     n = len(seq) if args.max_frames is None else min(len(seq), args.max_frames)
     overrides = {"seed": args.seed}
     if args.particles:
         overrides["n_particles"] = args.particles
     tracker = Tracker(TrackerConfig(**overrides))
+    sink = _sink(args.video)
+    boxes, track_time = _track_all(tracker, seq, n, box0, sink, args)
+    write_boxes(args.out, boxes)  # complete: every frame has its box
+    if sink is not None:
+        try:
+            sink.close()
+        except OSError as exc:
+            raise OSError(f"{args.out} written; the video {args.video} failed: {exc}") from exc
+    print(_summary(seq, n, boxes, track_time, args.out))
+    return 0
+
+
+def _sink(path):
+    from ..visualize import VideoSink
+
+    return VideoSink(path) if path else None
+
+
+def _track_all(tracker, seq, n, box0, sink, args):
+    """``(boxes (n, 4) 0-based, seconds of tracking)``; on any failure nothing is kept and the
+    error says how far it got and that ``--out`` was not written."""
+    from tqdm import tqdm
+
+    from ..tracker import track_frames
+    from ..visualize import draw_box
 
     boxes = np.full((n, 4), np.nan)
-    done = 0
-    sink = VideoSink(args.video) if args.video else None
-    track_time = 0.0
+    done, track_time = 0, 0.0
     bar = tqdm(total=n, unit="frame", disable=args.quiet, desc=seq.name)
     try:
         for i, (frame, box, seconds) in enumerate(track_frames(tracker, (seq[i] for i in range(n)), box0)):
             boxes[i] = box
-            done = i + 1
-            track_time += seconds
+            done, track_time = i + 1, track_time + seconds
             if sink is not None:
                 img = frame
                 if seq.groundtruth is not None and np.all(np.isfinite(seq.groundtruth[i])):
@@ -84,18 +135,26 @@ def run_track(args) -> int:
                 sink.add(draw_box(img, box, (255, 0, 0), "smtmvt"))
             bar.update(1)
             bar.set_postfix(fps=f"{done / max(track_time, 1e-9):.1f}")
+    except BaseException as exc:
+        if sink is not None:
+            sink.discard()
+        where = f"after {done} of {n} frames; nothing written to {args.out}"
+        if isinstance(exc, (ValueError, OSError)):
+            raise type(exc)(f"{exc} ({where})") from exc
+        print(f"{seq.name}: stopped {where}", file=sys.stderr)
+        raise
     finally:
         bar.close()
-        if sink is not None:
-            sink.close()
-        if done:
-            # Whatever was tracked is written, also after an interruption.
-            write_boxes(args.out, boxes[:done])
-    msg = f"{seq.name}: {n} frames, {n / max(track_time, 1e-9):.1f} fps (tracking only) -> {args.out}"
+    return boxes, track_time
+
+
+def _summary(seq, n, boxes, track_time, out) -> str:
+    from ..evaluation.metrics import overlap_ratio
+
+    msg = f"{seq.name}: {n} frames, {n / max(track_time, 1e-9):.1f} fps (tracking only) -> {out}"
     if seq.groundtruth is not None:
         gt = seq.groundtruth[:n]
         ok = np.all(np.isfinite(gt), axis=1)
         if ok.any():
             msg += f", mean overlap {overlap_ratio(boxes[ok], gt[ok]).mean():.3f}"
-    print(msg)
-    return 0
+    return msg

@@ -18,12 +18,13 @@ Main entry points::
     attrs = load_attributes("anno/att")       # {"basketball": ("IV", "OCC", ...)}
 """
 
+from .atomic import write_bytes_atomic, write_text_atomic
 from .attributes import ATTRIBUTE_NAMES, ATTRIBUTES, OTB_FLAG_ORDER, attributes_of, load_attributes
-from .boxes import parse_boxes, read_boxes, write_boxes, write_text_atomic
+from .boxes import parse_boxes, read_boxes, write_boxes
 from .dataset import list_dataset, open_dataset
 from .errors import SequenceError, SequenceWarning
 from .frames import IMAGE_EXTENSIONS, read_frame
-from .names import lookup, natural_key
+from .names import canonical_name, lookup, name_clashes, natural_key
 from .otb import OTB_FIRST_FRAME, open_otb_sequence
 from .sequence import ArraySequence, ImageSequence, Sequence
 from .sources import open_sequence
@@ -43,9 +44,11 @@ __all__ = [
     "VIDEO_EXTENSIONS",
     "VideoSequence",
     "attributes_of",
+    "canonical_name",
     "list_dataset",
     "load_attributes",
     "lookup",
+    "name_clashes",
     "natural_key",
     "open_dataset",
     "open_otb_sequence",
@@ -54,5 +57,6 @@ __all__ = [
     "read_boxes",
     "read_frame",
     "write_boxes",
+    "write_bytes_atomic",
     "write_text_atomic",
 ]

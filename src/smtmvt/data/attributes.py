@@ -120,7 +120,7 @@ def _read_flag_folder(folder: Path) -> dict:
     files = sorted((p for p in folder.glob("*.txt") if not p.name.startswith(".")), key=lambda p: natural_key(p.name))
     if not files:
         raise SequenceError(f"no attribute files (<Seq>.txt) in {folder}", path=folder)
-    table = {}
+    table: dict[str, tuple] = {}
     for f in files:
         text = f.read_text(encoding="utf-8-sig").strip()
         flags = _SPLIT.split(text) if text else []
@@ -136,7 +136,7 @@ def _read_flag_folder(folder: Path) -> dict:
 
 
 def _read_table_file(path: Path) -> dict:
-    table = {}
+    table: dict[str, tuple] = {}
     for i, line in enumerate(path.read_text(encoding="utf-8-sig").splitlines(), start=1):
         stripped = line.strip()
         if not stripped or stripped.startswith("#"):

@@ -8,7 +8,6 @@ their names and docstrings which one they take or give:
 - :func:`parse_boxes`: text -> boxes as written (1-based), no conversion.
 - :func:`read_boxes`: file -> 0-based API boxes (``one_based=True`` for as written).
 - :func:`write_boxes`: 0-based API boxes -> 1-based file, written atomically.
-- :func:`write_text_atomic`: the atomic write itself, for any text file.
 
 ``read_boxes(write_boxes(p, b))`` gives back ``b`` up to the float rounding of
 the +-1 shift (exactly for whole and half pixels).
@@ -18,14 +17,14 @@ from __future__ import annotations
 
 import os
 import re
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from .atomic import write_text_atomic
 from .errors import SequenceError
 
-__all__ = ["parse_boxes", "read_boxes", "write_boxes", "write_text_atomic", "ONE_BASED_OFFSET"]
+__all__ = ["parse_boxes", "read_boxes", "write_boxes", "ONE_BASED_OFFSET"]
 
 #: ``file_box = api_box + ONE_BASED_OFFSET``; ``api_box = file_box - ONE_BASED_OFFSET``.
 ONE_BASED_OFFSET = np.array([1.0, 1.0, 0.0, 0.0])
@@ -158,39 +157,6 @@ def write_boxes(path, boxes) -> Path:
     file_boxes = arr + ONE_BASED_OFFSET
     text = "".join(",".join(_format_number(v) for v in row) + "\n" for row in file_boxes)
     return write_text_atomic(path, text, encoding="ascii")
-
-
-def write_text_atomic(path, text: str, *, encoding: str = "utf-8") -> Path:
-    """Write ``text`` to ``path`` atomically (``\n`` line ends); return ``Path(path)``.
-
-    Missing parent folders are created. The text goes to a temporary file in
-    the same folder, is flushed and ``fsync``-ed, then renamed over ``path``
-    with ``os.replace``: a reader sees either the old file whole or the new one
-    whole, never a partial one, and an interrupted write leaves no temporary
-    file behind. A new file gets permissions ``0o644``; a replaced file keeps
-    its permissions.
-    """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    try:
-        mode = path.stat().st_mode & 0o777
-    except FileNotFoundError:
-        mode = 0o644
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding=encoding, newline="\n") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        os.chmod(tmp, mode)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
-    return path
 
 
 def _format_number(value: float) -> str:

@@ -6,7 +6,7 @@ import re
 from pathlib import Path
 
 from .errors import SequenceError
-from .names import natural_key
+from .names import name_clashes, natural_key
 from .otb import groundtruth_targets, is_otb_folder, open_otb_sequence
 
 __all__ = ["open_dataset", "list_dataset"]
@@ -63,6 +63,19 @@ def _select(entries, names, root):
     return chosen
 
 
+def _clash_messages(names, root) -> dict[str, str]:
+    """An error message for each name that differs from another only in case or separators."""
+    out = {}
+    for group in name_clashes(names).values():
+        listed = " and ".join(repr(n) for n in group)
+        for name in group:
+            out[name] = (
+                f"{root}: sequences {listed} differ only in case or separators ('_', '-', '.', space); "
+                f"results and reports match names that way, so one would carry the other's scores: rename one"
+            )
+    return out
+
+
 def open_dataset(root, sequences=None, *, on_error="raise") -> list:
     """Open every OTB sequence in ``root`` (see :func:`list_dataset`), sorted by name.
 
@@ -76,7 +89,8 @@ def open_dataset(root, sequences=None, *, on_error="raise") -> list:
         An unknown name raises SequenceError listing the available names.
     on_error : {"raise", "collect"}
         What to do with a sequence that cannot be opened (no images, no or bad
-        ground truth, ...):
+        ground truth, a name that differs from another sequence's only in case or
+        separators, see :func:`~smtmvt.data.names.canonical_name`, ...):
 
         - ``"raise"``: raise its SequenceError (the first one, in name order);
         - ``"collect"``: put the SequenceError in the returned list, in that
@@ -106,13 +120,16 @@ def open_dataset(root, sequences=None, *, on_error="raise") -> list:
         raise ValueError(f"on_error must be 'raise' or 'collect', got {on_error!r}")
     root = Path(root)
     entries = list_dataset(root)
+    clashes = _clash_messages([e[0] for e in entries], root)
     if sequences is not None:
         if isinstance(sequences, str):
             sequences = re.split(r"[,\s]+", sequences.strip())
         entries = _select(entries, sequences, root)
-    items = []
+    items: list = []
     for name, folder, target in entries:
         try:
+            if name in clashes:
+                raise SequenceError(clashes[name], path=folder)
             if not groundtruth_targets(folder):
                 raise SequenceError(f"{folder}: no ground-truth file (groundtruth_rect.txt)", path=folder)
             items.append(open_otb_sequence(folder, name=name, target=target))

@@ -119,7 +119,7 @@ def list_images(folder) -> list:
     if not folder.is_dir():
         raise SequenceError(f"image folder not found: {folder}", path=folder)
     files = [p for p in folder.iterdir() if not p.name.startswith(".") and is_image_file(p) and p.is_file()]
-    kinds = {}
+    kinds: dict[str, list[Path]] = {}
     for p in files:
         kinds.setdefault(_EXTENSION_KIND.get(p.suffix.lower(), p.suffix.lower()), []).append(p)
     if len(kinds) > 1:

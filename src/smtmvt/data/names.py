@@ -1,8 +1,8 @@
-"""Helpers for names: natural sort order and case-insensitive look-up.
+"""Helpers for names: natural sort order, case-insensitive look-up, the sequence key.
 
-OTB names differ in case between sources (``BasketBall`` in published results,
-``Basketball`` in the data), and frame files are numbered with or without zero
-padding (``img2`` must come before ``img10``).
+OTB names differ in case and separators between sources (``BasketBall`` in published
+results, ``Basketball`` in the data, ``Skating2.1`` / ``Skating2-1``), and frame files are
+numbered with or without zero padding (``img2`` must come before ``img10``).
 """
 
 from __future__ import annotations
@@ -10,9 +10,12 @@ from __future__ import annotations
 import re
 from collections.abc import Mapping
 
-__all__ = ["natural_key", "lookup"]
+__all__ = ["natural_key", "lookup", "canonical_name", "name_clashes"]
 
 _DIGITS = re.compile(r"(\d+)")
+_SEPARATORS = re.compile(r"[._\s]+")
+# names that mean the same sequence once case and separators are normalised
+_NAME_ALIASES = {"human4-2": "human4"}
 
 
 def natural_key(text: str) -> tuple:
@@ -41,4 +44,25 @@ def lookup(mapping: Mapping, name: str):
         return mapping[hits[0]]
     if hits:
         raise ValueError(f"name {name!r} is ambiguous: matches {sorted(hits)} (differ only in case)")
-    raise KeyError(f"{name!r} not found (case-insensitive); available: {', '.join(sorted(map(str, mapping), key=natural_key))}")
+    raise KeyError(
+        f"{name!r} not found (case-insensitive); available: {', '.join(sorted(map(str, mapping), key=natural_key))}"
+    )
+
+
+def canonical_name(name: str) -> str:
+    """Matching key of a sequence name: lower case, ``.``/``_``/white space -> ``-``, known
+    aliases (``Human4.2`` is the only Human4 target and OTB folders call it ``Human4``).
+
+    Results, reports, imports and attribute tables match sequences by this key.
+    """
+    key = _SEPARATORS.sub("-", str(name).strip().lower())
+    return _NAME_ALIASES.get(key, key)
+
+
+def name_clashes(names) -> dict[str, list[str]]:
+    """``{key: [names]}`` for the names that share a :func:`canonical_name` with another one
+    (``Seq_1`` and ``seq-1``); empty when every name has its own key."""
+    groups: dict[str, list[str]] = {}
+    for name in names:
+        groups.setdefault(canonical_name(name), []).append(name)
+    return {k: v for k, v in groups.items() if len(v) > 1}

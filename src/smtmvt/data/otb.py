@@ -122,7 +122,9 @@ def find_groundtruth(folder, target=None):
         )
     plain = [n for n in GROUNDTRUTH_NAMES if (folder / n).is_file()]
     if len(plain) > 1:
-        warnings.warn(f"{folder}: both {plain[0]} and {plain[1]} exist; using {plain[0]}", SequenceWarning, stacklevel=3)
+        warnings.warn(
+            f"{folder}: both {plain[0]} and {plain[1]} exist; using {plain[0]}", SequenceWarning, stacklevel=3
+        )
     return path, k
 
 
@@ -200,4 +202,3 @@ def open_otb_sequence(folder, groundtruth=None, name=None, *, target=None) -> Im
             files = used
     gt = align_groundtruth(boxes, len(files), groundtruth_file=gt_file, sequence=name, source=img_dir)
     return ImageSequence(files, name, gt, source=folder, groundtruth_file=gt_file)
-

@@ -50,12 +50,13 @@ class Sequence:
         As given (``source`` and ``groundtruth_file`` as ``Path``).
     """
 
-    def __init__(self, name, source, frame_names, groundtruth=None, *, groundtruth_file=None):
+    def __init__(self, name, source, frame_names, groundtruth=None, *, groundtruth_file=None) -> None:
         self.name = str(name)
         self.source = Path(source)
         self.frame_names = [str(n) for n in frame_names]
         self.groundtruth_file = None if groundtruth_file is None else Path(groundtruth_file)
         self._groundtruth = None
+        self._frame_size: tuple | None = None  # (H, W) of frame 0, once read
         if groundtruth is not None:
             gt = np.array(groundtruth, dtype=np.float64)  # a copy
             if gt.shape != (len(self.frame_names), 4):
@@ -81,15 +82,39 @@ class Sequence:
             i += n
         if not 0 <= i < n:
             raise IndexError(f"frame index {index} out of range for {self.name!r} ({n} frames)")
-        return self._read(i)
+        return self._same_size(i, self._read(i))
 
     def __iter__(self):
         """Frames in order, read one at a time."""
         for i in range(len(self)):
-            yield self._read(i)
+            yield self._same_size(i, self._read(i))
 
     def _read(self, i: int) -> np.ndarray:  # pragma: no cover - abstract
         raise NotImplementedError
+
+    def _frame_path(self, i: int) -> Path:
+        """The file frame ``i`` comes from (for messages)."""
+        return self.source
+
+    def _same_size(self, i: int, frame: np.ndarray) -> np.ndarray:
+        """``frame`` (frame ``i``) if it has frame 0's height and width, else SequenceError.
+
+        Boxes refer to one pixel grid; a frame of another size would silently move every box
+        on it. The reference is frame 0 (read once more if it was not read first).
+        """
+        size = tuple(frame.shape[:2])
+        if self._frame_size is None:
+            self._frame_size = size if i == 0 else tuple(self._read(0).shape[:2])
+        if size == self._frame_size:
+            return frame
+        (h, w), (h0, w0) = size, self._frame_size
+        raise SequenceError(
+            f"sequence {self.name!r}: frame {i} ({self.frame_names[i]}) is {w}x{h} pixels but frame 0 "
+            f"({self.frame_names[0]}) is {w0}x{h0}: all frames of a sequence must have one size",
+            path=self._frame_path(i),
+            frame=i,
+            sequence=self.name,
+        )
 
     @cached_property
     def is_grayscale(self) -> bool:
@@ -150,6 +175,9 @@ class ImageSequence(Sequence):
         if source is None:
             source = self.files[0].parent
         super().__init__(name, source, _short_names(self.files), groundtruth, groundtruth_file=groundtruth_file)
+
+    def _frame_path(self, i: int) -> Path:
+        return self.files[i]
 
     def _read(self, i: int) -> np.ndarray:
         try:

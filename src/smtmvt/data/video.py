@@ -113,7 +113,7 @@ class VideoSequence(Sequence):
                 ok, frame = cap.read()
                 if not ok or frame is None:
                     raise self._decode_error(i)
-                yield _to_rgb(frame, os.fspath(self.source))
+                yield self._same_size(i, _to_rgb(frame, os.fspath(self.source)))
         finally:
             cap.release()
 
@@ -133,5 +133,5 @@ class VideoSequence(Sequence):
     def __del__(self):
         try:
             self.close()
-        except Exception:  # pragma: no cover - interpreter shutdown
+        except Exception:  # noqa: BLE001  # pragma: no cover - interpreter shutdown
             pass

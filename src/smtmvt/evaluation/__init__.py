@@ -1,13 +1,15 @@
 """OTB one-pass evaluation: run trackers over a benchmark, score them, report.
 
-Running (:mod:`.runner`, :mod:`.trackers`)::
+Running (:mod:`.runner`, :mod:`.trackers`; where pairs run: :mod:`.workers`)::
 
     from smtmvt.evaluation import run_evaluation, available_trackers, register_tracker
     run = run_evaluation("../shared/data/otb", ["smtmvt", "opencv-csrt"], "/tmp/run", workers=4)
 
-Scoring and reporting (:mod:`.metrics`, :mod:`.published`, :mod:`.report`, :mod:`.plots`)
-are re-exported here too; they are imported on first use, so ``import smtmvt.evaluation``
-stays light (no matplotlib) and works whichever of these modules a checkout has.
+The run folder, every path in it, its lock and its settings: :class:`RunDir`
+(:mod:`.rundir`). Scoring (:mod:`.scoring`, :mod:`.metrics`), writing the report
+(:mod:`.report`, :mod:`.tables`, :mod:`.page`, :mod:`.plots`), published results
+(:mod:`.published`) and imports (:mod:`.imports`) are re-exported here too; they are
+imported on first use, so ``import smtmvt.evaluation`` stays light (no matplotlib).
 
 Command line: ``smtmvt evaluate`` and ``smtmvt report`` (:mod:`.cli`).
 """
@@ -16,6 +18,7 @@ from __future__ import annotations
 
 import importlib
 
+from .rundir import RunDir, RunDirError, RunInfo, RunLockedError
 from .runner import (
     PairOutcome,
     PairTask,
@@ -31,26 +34,53 @@ from .trackers import (
     EvalTracker,
     OpenCVTracker,
     SmtmvtAdapter,
+    TrackerSpec,
     UnknownTrackerError,
     available_trackers,
     get_factory,
     make_tracker,
     register_tracker,
     to_bgr8,
+    tracker_spec,
     unregister_tracker,
 )
 
 #: Names re-exported lazily from the scoring/report modules: ``name -> module``.
 _LAZY = {
-    **{name: "metrics" for name in (
-        "SUCCESS_THRESHOLDS", "PRECISION_THRESHOLDS", "INVALID_MODES", "overlap_ratio", "center_error",
-        "success_curve", "precision_curve", "valid_groundtruth", "repair_predictions", "SequenceScore",
-        "score_sequence", "Aggregate", "aggregate")},
-    **{name: "published" for name in (
-        "load_published_scores", "published_trackers", "import_results", "import_into_run",
-        "load_attribute_table", "read_otb_mat", "read_otb_json", "ImportedResult")},
-    **{name: "report" for name in ("build_report", "load_groundtruth_source")},
-    **{name: "plots" for name in ("plot_curves", "select_curves", "Curve")},
+    **dict.fromkeys(
+        (
+            "SUCCESS_THRESHOLDS",
+            "PRECISION_THRESHOLDS",
+            "INVALID_MODES",
+            "overlap_ratio",
+            "center_error",
+            "success_curve",
+            "precision_curve",
+            "valid_groundtruth",
+            "repair_predictions",
+            "SequenceScore",
+            "score_sequence",
+            "Aggregate",
+            "aggregate",
+        ),
+        "metrics",
+    ),
+    **dict.fromkeys(
+        (
+            "load_published_scores",
+            "published_trackers",
+            "import_results",
+            "load_attribute_table",
+            "read_otb_mat",
+            "read_otb_json",
+            "ImportedResult",
+        ),
+        "published",
+    ),
+    **dict.fromkeys(("import_into_run",), "imports"),
+    **dict.fromkeys(("build_report", "load_groundtruth_source"), "report"),
+    **dict.fromkeys(("score_run", "Summary"), "scoring"),
+    **dict.fromkeys(("plot_curves", "render_curves", "select_curves", "Curve"), "plots"),
 }
 
 __all__ = [
@@ -58,8 +88,13 @@ __all__ = [
     "OpenCVTracker",
     "PairOutcome",
     "PairTask",
+    "RunDir",
+    "RunDirError",
+    "RunInfo",
+    "RunLockedError",
     "RunResult",
     "SmtmvtAdapter",
+    "TrackerSpec",
     "UnknownTrackerError",
     "available_trackers",
     "count_lines",
@@ -72,6 +107,7 @@ __all__ = [
     "sequence_seed",
     "times_path",
     "to_bgr8",
+    "tracker_spec",
     "unregister_tracker",
     *_LAZY,
 ]

@@ -5,17 +5,20 @@
     after an interruption and finished pairs are skipped. Then builds the report
     (``RUN_DIR/report/``) unless ``--no-report``.
 
-    Exit status: 0 when every (tracker, sequence) pair is complete, **1 when any pair failed
-    or a tracker/sequence name was unknown** (the other pairs still ran, the errors are
-    printed and kept in ``RUN_DIR/errors.json``, and the report is still built), 2 for a
-    problem with the whole command (no dataset folder, a run folder of another dataset, an
-    unreachable scheduler), printed as one ``error:`` line.
+    Exit status: 0 when every (tracker, sequence) pair is complete and the report has no
+    gap, **1 when any pair failed, a tracker/sequence name was unknown or the report has
+    gaps** (the other pairs still ran, the errors are printed and kept in
+    ``RUN_DIR/errors.json``, and the report is still built), 2 for a problem with the whole
+    command (no dataset folder, a run folder of another dataset or frame limit, a folder in
+    use by another command, an unreachable scheduler), printed as one ``error:`` line;
+    130 after Ctrl-C, 143 after SIGTERM (the run stops cleanly, its workers with it).
 
 ``smtmvt report RUN_DIR``
     Rebuilds ``RUN_DIR/report/`` from the stored results (nothing is re-run); ``--import``
     adds foreign per-frame results (published trackers) to the run first. Exit status 0 when
     every pair was scored, 1 when the report has gaps (errors of the run, or result files
-    that cannot be used; printed, and listed in the report), 2 when no report could be built.
+    that cannot be used; printed, and listed in the report), 2 when no report could be built
+    (for instance RUN_DIR is not a run folder).
 """
 
 from __future__ import annotations
@@ -24,14 +27,20 @@ import ast
 import sys
 from pathlib import Path
 
+from ..commands.args import positive_int
+
 __all__ = ["add_parsers", "cmd_evaluate", "cmd_report", "parse_tracker_options"]
 
 
 def add_parsers(subparsers) -> None:
     """Register ``evaluate`` and ``report`` on an argparse sub-parsers object."""
+    _add_evaluate(subparsers)
+    _add_report(subparsers)
+
+
+def _add_evaluate(subparsers) -> None:
     from .trackers import available_trackers
 
-    names = ", ".join(available_trackers())
     p = subparsers.add_parser(
         "evaluate",
         help="run trackers over an OTB-format dataset (one-pass evaluation) and report",
@@ -39,47 +48,87 @@ def add_parsers(subparsers) -> None:
             "One-pass evaluation: each tracker starts from the first ground-truth box and runs "
             "over the whole sequence. Results go to RUN_DIR/results/<tracker>/<sequence>.txt "
             "(1-based x,y,w,h per frame) with per-frame times; a restarted run skips finished "
-            "pairs. Exit status 0: all pairs complete; 1: some pair failed or a name was "
-            "unknown (the rest ran; see RUN_DIR/errors.json); 2: the command itself failed."
+            "pairs. Exit status 0: all pairs complete; 1: some pair failed, a name was "
+            "unknown or the report has gaps (the rest ran; see RUN_DIR/errors.json); 2: the "
+            "command itself failed."
         ),
     )
-    p.add_argument("--dataset", required=True, metavar="DIR", help="folder of OTB sequences (<Seq>/img, groundtruth_rect.txt)")
-    p.add_argument("--trackers", required=True, metavar="NAMES", help=f"comma-separated tracker names; available: {names}")
-    p.add_argument("--out", required=True, metavar="RUN_DIR", help="run folder (created, or resumed)")
-    p.add_argument("--sequences", metavar="NAMES", help="comma-separated sequence names (default: all; case-insensitive)")
-    p.add_argument("--workers", type=int, default=1, metavar="N", help="local worker processes (default 1)")
-    p.add_argument("--scheduler", metavar="ADDRESS",
-                   help="Dask scheduler address (tcp://host:8786): run the pairs on that cluster; "
-                        "workers must see the dataset at the same path")
-    p.add_argument("--max-frames", type=int, metavar="N",
-                   help="run only the first N frames of each sequence (quick checks; NOT OTB-compliant)")
-    p.add_argument("--tracker-option", action="append", default=[], metavar="TRACKER:KEY=VALUE",
-                   help="option for one tracker's constructor, repeatable "
-                        "(smtmvt:n_particles=200, opencv-kcf:detect_thresh=0.2)")
-    p.add_argument("--attributes", metavar="PATH", help="attribute table for the report (stored in run.json)")
-    p.add_argument("--published", metavar="DIR", help="published OTB results folder for the report (stored in run.json)")
-    p.add_argument("--no-report", action="store_true", help="do not build RUN_DIR/report at the end")
-    p.add_argument("--quiet", action="store_true", help="no progress bars")
+    add = p.add_argument
+    add("--dataset", required=True, metavar="DIR", help="folder of OTB sequences (<Seq>/img, groundtruth_rect.txt)")
+    add(
+        "--trackers",
+        required=True,
+        metavar="NAMES",
+        help=f"comma-separated names; available: {', '.join(available_trackers())}",
+    )
+    add("--out", required=True, metavar="RUN_DIR", help="run folder (created, or resumed)")
+    add("--sequences", metavar="NAMES", help="comma-separated sequence names (default: all; case-insensitive)")
+    add("--workers", type=positive_int, default=1, metavar="N", help="local worker processes (default 1)")
+    add(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="Dask scheduler address (tcp://host:8786): run the pairs on that cluster; "
+        "workers must see the dataset at the same path",
+    )
+    add(
+        "--max-frames",
+        type=positive_int,
+        metavar="N",
+        help="run only the first N frames of each sequence (quick checks; NOT OTB-compliant). "
+        "A run folder keeps the limit it was made with",
+    )
+    add(
+        "--repeat",
+        type=positive_int,
+        metavar="N",
+        help="run each stochastic tracker N times per sequence with N seeds (deterministic ones once); "
+        "the report gives mean and std. Default: the run folder's count (1 for a new one)",
+    )
+    add("--overwrite", action="store_true", help="discard RUN_DIR's results if it was made with another --max-frames")
+    add(
+        "--tracker-option",
+        action="append",
+        default=[],
+        metavar="TRACKER:KEY=VALUE",
+        help="option for one tracker's constructor, repeatable (smtmvt:n_particles=200, opencv-kcf:detect_thresh=0.2)",
+    )
+    add("--attributes", metavar="PATH", help="attribute table for the report (stored in run.json)")
+    add("--published", metavar="DIR", help="published OTB results folder for the report (stored in run.json)")
+    add("--no-report", action="store_true", help="do not build RUN_DIR/report at the end")
+    add("--quiet", action="store_true", help="no progress bars")
     p.set_defaults(func=cmd_evaluate)
 
+
+def _add_report(subparsers) -> None:
     r = subparsers.add_parser(
         "report",
         help="rebuild RUN_DIR/report from stored results (nothing is re-run)",
         description="Score the stored results of a run folder and write RUN_DIR/report/ "
-                    "(table.md, table.csv, success/precision plots, summary.json, index.html).",
+        "(table.md, table.csv, success/precision plots, summary.json, index.html).",
     )
-    r.add_argument("run_dir", metavar="RUN_DIR")
-    r.add_argument("--dataset", metavar="DIR", help="OTB dataset (default: the one in RUN_DIR/run.json)")
-    r.add_argument("--published", metavar="DIR", help="published OTB results folder (curves drawn beside ours)")
-    r.add_argument("--attributes", metavar="PATH", help="attribute table or anno/att folder")
-    r.add_argument("--import", dest="imports", action="append", default=[], metavar="PATH[:NAME]",
-                   help="import per-frame results (a tracker's folder or file) into the run "
-                        "first, as tracker NAME; repeatable")
-    r.add_argument("--benchmark", default="tb100", choices=["tb100", "cvpr13", "tb50"],
-                   help="published score set to draw (default tb100)")
-    r.add_argument("--top", type=int, default=10, metavar="N", help="curves per plot (default 10)")
-    r.add_argument("--invalid", default="otb", choices=["otb", "pytracking", "fail"],
-                   help="invalid ground-truth frames: otb (MATLAB toolkit, default), pytracking, fail")
+    add = r.add_argument
+    add("run_dir", metavar="RUN_DIR")
+    add("--dataset", metavar="DIR", help="OTB dataset (default: the one in RUN_DIR/run.json)")
+    add("--published", metavar="DIR", help="published OTB results folder (curves drawn beside ours)")
+    add("--attributes", metavar="PATH", help="attribute table or anno/att folder")
+    add(
+        "--import",
+        dest="imports",
+        action="append",
+        default=[],
+        metavar="PATH[:NAME]",
+        help="import per-frame results (a tracker's folder or file) into the run first, as tracker NAME; "
+        "repeatable. A name the run computed itself is imported as NAME-imported",
+    )
+    add("--benchmark", default="tb100", choices=["tb100", "cvpr13", "tb50"], help="published score set (default tb100)")
+    add("--top", type=positive_int, default=10, metavar="N", help="curves per plot (default 10)")
+    add("--repeat", type=positive_int, metavar="N", help="report the first N repeats (default: all the run holds)")
+    add(
+        "--invalid",
+        default="otb",
+        choices=["otb", "pytracking", "fail"],
+        help="invalid ground-truth frames: otb (MATLAB toolkit, default), pytracking, fail",
+    )
     r.set_defaults(func=cmd_report)
 
 
@@ -108,24 +157,34 @@ def _print_errors(errors, run_dir: Path) -> None:
     print(f"{len(errors)} error(s) (kept in {run_dir / 'errors.json'}):", file=sys.stderr)
     for e in errors:
         where = e["tracker"] if e["sequence"] is None else f"{e['tracker']} / {e['sequence']}"
+        if e.get("repeat"):
+            where += f" (repeat {e['repeat']})"
         print(f"  error: {where}: {e['error']}", file=sys.stderr)
 
 
 def _print_report(summary, run_dir: Path) -> None:
-    report_dir = run_dir / "report"
-    rows = []
-    for name, t in (summary or {}).get("trackers", {}).items():
-        def fmt(v, spec):
-            return "-" if v is None else format(v, spec)
+    def fmt(v, spec):
+        return "-" if v is None else format(v, spec)
 
-        rows.append(f"  {name:<22} AUC {fmt(t.get('auc'), '.3f')}  precision@20 "
-                    f"{fmt(t.get('precision20'), '.3f')}  FPS {fmt(t.get('fps'), '.1f')}  "
-                    f"({t.get('n_sequences', '?')} sequences)")
-    if rows:
-        print("\n".join(rows))
+    for name, t in (summary or {}).get("trackers", {}).items():
+        auc = fmt(t.get("auc"), ".3f") + ("" if t.get("auc_std") in (None, 0.0) else f" ± {t['auc_std']:.3f}")
+        print(
+            f"  {name:<22} AUC {auc}  precision@20 {fmt(t.get('precision20'), '.3f')}  "
+            f"FPS {fmt(t.get('fps'), '.1f')}  ({t.get('n_sequences', '?')} sequences)"
+        )
+    report_dir = run_dir / "report"
     for name in ("table.md", "index.html"):
         if (report_dir / name).exists():
             print(f"report: {report_dir / name}")
+
+
+def _print_gaps(summary) -> list:
+    """Print the report's own gaps (unusable results; run errors are printed already)."""
+    gaps = [e for e in (summary or {}).get("errors", []) if e.get("stage") == "report"]
+    for e in gaps:
+        where = " / ".join(str(x) for x in (e.get("tracker"), e.get("sequence")) if x)
+        print(f"  report gap: {where or 'general'}: {e.get('error')}", file=sys.stderr)
+    return gaps
 
 
 def cmd_evaluate(args) -> int:
@@ -144,21 +203,27 @@ def cmd_evaluate(args) -> int:
         report=not args.no_report,
         attributes=args.attributes,
         published=args.published,
+        repeat=args.repeat,
+        overwrite=args.overwrite,
     )
-    print(f"evaluate: {len(run.done)} pair(s) run ({run.frames} frames), {len(run.skipped)} already "
-          f"done, {len(run.errors)} error(s); {run.seconds:.1f} s")
+    print(
+        f"evaluate: {len(run.done)} pair(s) run ({run.frames} frames), {len(run.skipped)} already "
+        f"done, {len(run.errors)} error(s); {run.seconds:.1f} s"
+    )
     for note in run.notes:
         print(f"note: {note}")
     if args.max_frames:
         print(f"note: --max-frames {args.max_frames}: sequences were cut short (not OTB-compliant)")
     print(f"results: {run.run_dir / 'results'}")
     _print_errors(run.errors, run.run_dir)
-    if not args.no_report:
-        if run.report is not None:
-            _print_report(run.report, run.run_dir)
-        elif run.report_error:
-            print(f"report not built: {run.report_error} (run: smtmvt report {run.run_dir})", file=sys.stderr)
-    return 0 if run.ok else 1
+    if args.no_report:
+        return 0 if run.ok else 1
+    if run.report is None:
+        print(f"report not built: {run.report_error} (run: smtmvt report {run.run_dir})", file=sys.stderr)
+        return 1
+    _print_report(run.report, run.run_dir)
+    gaps = _print_gaps(run.report)
+    return 0 if run.ok and not gaps else 1
 
 
 def _split_import(item: str):
@@ -166,37 +231,39 @@ def _split_import(item: str):
     if Path(item).exists():
         return item, None
     path, sep, name = item.rpartition(":")
-    if sep and path and name and "/" not in name:
+    if sep and path and name:
         return path, name
     return item, None
 
 
 def cmd_report(args) -> int:
+    from .imports import import_into_run
     from .report import build_report
+    from .rundir import RunDir
 
-    run_dir = Path(args.run_dir)
-    if not run_dir.is_dir():
-        raise FileNotFoundError(f"run folder not found: {run_dir}")
-    if args.imports:
-        from .published import import_into_run
-
-        for item in args.imports:
-            source, name = _split_import(item)
-            if not Path(source).exists():
-                raise FileNotFoundError(f"--import {item}: {source} not found")
-            written = import_into_run(run_dir, source, tracker_name=name)
-            for tracker, seqs in written.items():
-                print(f"imported {tracker}: {len(seqs)} sequence(s) from {source}")
+    run = RunDir(args.run_dir)
+    run.info()  # not a run folder: one clear error, nothing created
+    for item in args.imports:
+        source, name = _split_import(item)
+        if not Path(source).exists():
+            raise FileNotFoundError(f"--import {item}: {source} not found")
+        notes: list[str] = []
+        written = import_into_run(run.root, source, tracker_name=name, notes=notes)
+        for note in notes:
+            print(f"note: {note}")
+        for tracker, seqs in written.items():
+            print(f"imported {tracker}: {len(seqs)} sequence(s) from {source}")
     summary = build_report(
-        run_dir,
+        run,
         dataset=args.dataset,
         published=args.published,
         benchmark=args.benchmark,
         attributes=args.attributes,
         top=args.top,
         invalid=args.invalid,
+        repeat=args.repeat,
     )
-    _print_report(summary, run_dir)
+    _print_report(summary, run.root)
     errors = summary.get("errors", [])
     for e in errors:
         where = " / ".join(str(x) for x in (e.get("tracker"), e.get("sequence")) if x)

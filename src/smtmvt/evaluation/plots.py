@@ -12,15 +12,17 @@ display and no global pyplot state are involved.
 
 from __future__ import annotations
 
+import io
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Sequence
 
 import numpy as np
 
+from ..data import write_bytes_atomic
 from .metrics import PRECISION_THRESHOLDS, SUCCESS_THRESHOLDS
 
-__all__ = ["Curve", "select_curves", "plot_curves", "TITLES"]
+__all__ = ["Curve", "select_curves", "plot_curves", "render_curves", "TITLES"]
 
 TITLES = {
     "success": ("Success plots of OPE", "Overlap threshold", "Success rate"),
@@ -29,12 +31,34 @@ TITLES = {
 
 # MATLAB toolkit's plotDrawStyle colours (first ten), then matplotlib's cycle
 _COLORS = [
-    "#ff0000", "#00ff00", "#0000ff", "#000000", "#ff00ff",
-    "#00ffff", "#888888", "#884400", "#880088", "#ff8800",
-    "#1f77b4", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
+    "#ff0000",
+    "#00ff00",
+    "#0000ff",
+    "#000000",
+    "#ff00ff",
+    "#00ffff",
+    "#888888",
+    "#884400",
+    "#880088",
+    "#ff8800",
+    "#1f77b4",
+    "#2ca02c",
+    "#d62728",
+    "#9467bd",
+    "#8c564b",
 ]
-_PUBLISHED_COLORS = ["#7f7f7f", "#bcbd22", "#17becf", "#8c564b", "#e377c2", "#9467bd", "#aec7e8",
-                     "#ffbb78", "#98df8a", "#c5b0d5"]
+_PUBLISHED_COLORS = [
+    "#7f7f7f",
+    "#bcbd22",
+    "#17becf",
+    "#8c564b",
+    "#e377c2",
+    "#9467bd",
+    "#aec7e8",
+    "#ffbb78",
+    "#98df8a",
+    "#c5b0d5",
+]
 
 
 @dataclass
@@ -60,13 +84,45 @@ def select_curves(ours: Sequence[Curve], published: Sequence[Curve] = (), top: i
     return sorted(list(ours) + list(pub), key=lambda c: -c.score)
 
 
-def plot_curves(kind: str, curves: Sequence[Curve], out_stem, subtitle: str | None = None,
-                formats: Sequence[str] = ("png", "svg"), dpi: int = 120) -> list[Path]:
-    """Draw ``curves`` (already selected) and save ``<out_stem>.<fmt>`` for each format.
+def plot_curves(
+    kind: str,
+    curves: Sequence[Curve],
+    out_stem,
+    subtitle: str | None = None,
+    formats: Sequence[str] = ("png", "svg"),
+    dpi: int = 120,
+) -> list[Path]:
+    """Draw ``curves`` (already selected) and save ``<out_stem>.<fmt>`` for each format,
+    each atomically. ``kind`` is ``"success"`` or ``"precision"``. Returns the written paths."""
+    out_stem = Path(out_stem)
+    written = []
+    for fmt, data in render_curves(kind, curves, subtitle, formats, dpi).items():
+        written.append(write_bytes_atomic(out_stem.with_name(f"{out_stem.name}.{fmt}"), data))
+    return written
 
-    ``kind`` is ``"success"`` or ``"precision"``. Returns the written paths.
-    """
+
+def render_curves(
+    kind: str,
+    curves: Sequence[Curve],
+    subtitle: str | None = None,
+    formats: Sequence[str] = ("png", "svg"),
+    dpi: int = 120,
+) -> dict[str, bytes]:
+    """The plot of ``curves`` as ``{format: file bytes}`` (nothing is written)."""
     import matplotlib
+
+    fig = _figure(kind, curves, subtitle)
+    out = {}
+    # SVG text stays text (searchable, editable), not glyph outlines
+    with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "smtmvt"}):
+        for fmt in formats:
+            buf = io.BytesIO()
+            fig.savefig(buf, format=fmt, dpi=dpi, bbox_inches="tight")
+            out[fmt] = buf.getvalue()
+    return out
+
+
+def _figure(kind: str, curves: Sequence[Curve], subtitle: str | None):
     from matplotlib.figure import Figure
 
     if kind not in TITLES:
@@ -75,12 +131,10 @@ def plot_curves(kind: str, curves: Sequence[Curve], out_stem, subtitle: str | No
     if subtitle:
         title = f"{title} - {subtitle}"
     x = SUCCESS_THRESHOLDS if kind == "success" else PRECISION_THRESHOLDS
-    curves = sorted(curves, key=lambda c: -c.score)
-
     fig = Figure(figsize=(7.2, 4.8))
     ax = fig.add_subplot(1, 1, 1)
     i_ours = i_pub = 0
-    for c in curves:
+    for c in sorted(curves, key=lambda c: -c.score):
         y = np.asarray(c.values, dtype=float)
         if y.shape != x.shape:
             raise ValueError(f"curve {c.name!r}: {y.size} values, expected {x.size}")
@@ -101,14 +155,4 @@ def plot_curves(kind: str, curves: Sequence[Curve], out_stem, subtitle: str | No
     if curves:
         ax.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=8, frameon=False)
     fig.tight_layout()
-
-    out_stem = Path(out_stem)
-    out_stem.parent.mkdir(parents=True, exist_ok=True)
-    written = []
-    # SVG text stays text (searchable, editable), not glyph outlines
-    with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "smtmvt"}):
-        for fmt in formats:
-            path = out_stem.with_name(f"{out_stem.name}.{fmt}")
-            fig.savefig(path, format=fmt, dpi=dpi, bbox_inches="tight")
-            written.append(path)
-    return written
+    return fig

@@ -33,15 +33,16 @@ for matching everywhere.
 from __future__ import annotations
 
 import json
-import os
 import re
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Iterable, Mapping
+from typing import Any
 
 import numpy as np
 
 from ..data.attributes import ATTRIBUTE_NAMES, ATTRIBUTES, load_attributes
+from ..data.names import canonical_name
 
 __all__ = [
     "ATTRIBUTES",
@@ -59,7 +60,6 @@ __all__ = [
     "read_otb_json",
     "ivt_affine_to_rect",
     "import_results",
-    "import_into_run",
     "load_attribute_table",
 ]
 
@@ -70,19 +70,20 @@ BENCHMARKS = {
     "tb100": ("tb100", "OTB-100"),
 }
 _BENCHMARK_ALIASES = {
-    "cvpr13": "cvpr13", "cvpr2013": "cvpr13", "otb2013": "cvpr13", "otb-2013": "cvpr13", "otb13": "cvpr13",
-    "tb50": "tb50", "otb50": "tb50", "tb-50": "tb50",
-    "tb100": "tb100", "otb100": "tb100", "otb-100": "tb100", "otb2015": "tb100", "otb-2015": "tb100",
+    "cvpr13": "cvpr13",
+    "cvpr2013": "cvpr13",
+    "otb2013": "cvpr13",
+    "otb-2013": "cvpr13",
+    "otb13": "cvpr13",
+    "tb50": "tb50",
+    "otb50": "tb50",
+    "tb-50": "tb50",
+    "tb100": "tb100",
+    "otb100": "tb100",
+    "otb-100": "tb100",
+    "otb2015": "tb100",
+    "otb-2015": "tb100",
 }
-# names that mean the same sequence once case and separators are normalised
-_NAME_ALIASES = {"human4-2": "human4"}
-
-
-def canonical_name(name: str) -> str:
-    """Matching key of a sequence name: lower case, ``.``/``_``/space -> ``-``, known aliases
-    (``Human4.2`` is the only Human4 target and OTB folders call it ``Human4``)."""
-    key = re.sub(r"[._\s]+", "-", str(name).strip().lower())
-    return _NAME_ALIASES.get(key, key)
 
 
 def _benchmark_key(benchmark: str) -> str:
@@ -110,14 +111,16 @@ def read_box_file(path, ncols: int = 4) -> np.ndarray:
     """
     path = Path(path)
     rows = []
-    with open(path, "r", encoding="utf-8", errors="replace") as fh:
+    with open(path, encoding="utf-8", errors="replace") as fh:
         for lineno, line in enumerate(fh, 1):
             text = line.strip()
             if not text:
                 continue
             parts = [p for p in _SPLIT.split(text) if p]
             if len(parts) != ncols:
-                raise ValueError(f"{path}:{lineno}: expected {ncols} numbers (x,y,w,h), got {len(parts)}: {text[:60]!r}")
+                raise ValueError(
+                    f"{path}:{lineno}: expected {ncols} numbers (x,y,w,h), got {len(parts)}: {text[:60]!r}"
+                )
             try:
                 rows.append([float(p) for p in parts])
             except ValueError:
@@ -162,8 +165,9 @@ def published_trackers(otb_results_dir, benchmark: str = "tb100") -> list[str]:
     return sorted((p.name for p in ope.iterdir() if (p / sub).is_dir()), key=str.lower)
 
 
-def load_published_scores(otb_results_dir, benchmark: str = "tb100", subset: str = "ALL",
-                          trackers: Iterable[str] | None = None) -> dict:
+def load_published_scores(
+    otb_results_dir, benchmark: str = "tb100", subset: str = "ALL", trackers: Iterable[str] | None = None
+) -> dict:
     """Published OPE scores of every tracker (or ``trackers``) on ``benchmark`` / ``subset``.
 
     Returns ``{tracker: {"success": (21,), "precision": (51,), "auc": float,
@@ -184,7 +188,7 @@ def load_published_scores(otb_results_dir, benchmark: str = "tb100", subset: str
         if not path.is_file():
             continue
         try:
-            with open(path, "r", encoding="utf-8") as fh:
+            with open(path, encoding="utf-8") as fh:
                 data = json.load(fh)
             success = np.asarray(data["successRateList"], dtype=np.float64)
             precision = np.asarray(data["precisionList"], dtype=np.float64)
@@ -193,8 +197,9 @@ def load_published_scores(otb_results_dir, benchmark: str = "tb100", subset: str
         except (OSError, ValueError, KeyError, TypeError) as exc:
             raise ValueError(f"{path}: not a tracker_benchmark score file ({exc})") from None
         if success.shape != (21,) or precision.shape != (51,):
-            raise ValueError(f"{path}: expected 21 success and 51 precision values, "
-                             f"got {success.shape} and {precision.shape}")
+            raise ValueError(
+                f"{path}: expected 21 success and 51 precision values, got {success.shape} and {precision.shape}"
+            )
         out[name] = {
             "success": success,
             "precision": precision,
@@ -245,9 +250,11 @@ def ivt_affine_to_rect(params, tmplsize) -> np.ndarray:
     """
     p = np.asarray(params, dtype=np.float64).reshape(-1, 6)
     w, h = (float(v) for v in np.asarray(tmplsize, dtype=np.float64).ravel()[:2])
+
     # M = [p1 p3 p4; p2 p5 p6] applied to (1, u, v)
     def corner(u, v):
         return p[:, 0] + p[:, 2] * u + p[:, 3] * v, p[:, 1] + p[:, 4] * u + p[:, 5] * v
+
     x1, y1 = corner(-w / 2, -h / 2)
     x3, y3 = corner(w / 2, h / 2)
     x1, y1, x3, y3 = np.floor(x1), np.floor(y1), np.floor(x3), np.floor(y3)
@@ -290,10 +297,10 @@ def read_otb_mat(path, tracker: str | None = None, sequence: str | None = None) 
     sequence = sequence or seq_guess
     try:
         mat = loadmat(str(path))
-    except Exception as exc:  # scipy raises several types for corrupt files
+    except Exception as exc:  # noqa: BLE001 - scipy raises several types for corrupt files
         raise ValueError(f"{path}: cannot read MATLAB file ({exc})") from None
     keys = [k for k in mat if not k.startswith("__")]
-    common = dict(tracker=tracker, sequence=sequence, source=str(path), format="otb-mat")
+    common: dict[str, Any] = dict(tracker=tracker, sequence=sequence, source=str(path), format="otb-mat")
     if "results" in mat:
         rec = mat["results"]
         # a cell array (1 x runs; OPE has one run) of 1x1 structs
@@ -306,7 +313,9 @@ def read_otb_mat(path, tracker: str | None = None, sequence: str | None = None) 
         if "res" not in fields:
             raise ValueError(f"{path}: results struct has no 'res' field")
         res = np.asarray(_unwrap(fields["res"]), dtype=np.float64)
-        rtype = str(np.asarray(_unwrap(fields.get("type", np.array(["rect"])))).ravel()[0]) if "type" in fields else "rect"
+        rtype = (
+            str(np.asarray(_unwrap(fields.get("type", np.array(["rect"])))).ravel()[0]) if "type" in fields else "rect"
+        )
         if rtype == "rect":
             boxes = res.reshape(-1, 4) if res.size else np.zeros((0, 4))
         elif rtype == "ivtAff":
@@ -317,14 +326,18 @@ def read_otb_mat(path, tracker: str | None = None, sequence: str | None = None) 
         else:
             raise ValueError(f"{path}: unsupported result type {rtype!r} (supported: rect, ivtAff)")
         return ImportedResult(
-            boxes=boxes, result_type=rtype,
+            boxes=boxes,
+            result_type=rtype,
             start_frame=_scalar(fields.get("startFrame"), int) if "startFrame" in fields else None,
             anno_begin=_scalar(fields.get("annoBegin"), int) if "annoBegin" in fields else None,
             fps=_scalar(fields.get("fps"), float) if "fps" in fields else None,
             **common,
         )
-    numeric = [k for k in keys if isinstance(mat[k], np.ndarray) and mat[k].dtype != object
-               and mat[k].ndim == 2 and mat[k].shape[1] == 4]
+    numeric = [
+        k
+        for k in keys
+        if isinstance(mat[k], np.ndarray) and mat[k].dtype != object and mat[k].ndim == 2 and mat[k].shape[1] == 4
+    ]
     if len(numeric) == 1:
         return ImportedResult(boxes=np.asarray(mat[numeric[0]], dtype=np.float64), **common)
     raise ValueError(f"{path}: no 'results' struct and no single (n, 4) array (variables: {', '.join(keys) or 'none'})")
@@ -339,7 +352,7 @@ def read_otb_json(path, tracker: str | None = None) -> ImportedResult:
     """Read a tracker_benchmark per-frame result JSON (``OPE/<TRACKER>/<Seq>.json``)."""
     path = Path(path)
     try:
-        with open(path, "r", encoding="utf-8") as fh:
+        with open(path, encoding="utf-8") as fh:
             data = json.load(fh)
     except (OSError, ValueError) as exc:
         raise ValueError(f"{path}: not a JSON result file ({exc})") from None
@@ -358,7 +371,10 @@ def read_otb_json(path, tracker: str | None = None) -> ImportedResult:
     return ImportedResult(
         tracker=tracker or rec.get("tracker") or path.parent.name,
         sequence=rec.get("seqName") or path.stem,
-        boxes=boxes, source=str(path), format="otb-json", result_type=rtype,
+        boxes=boxes,
+        source=str(path),
+        format="otb-json",
+        result_type=rtype,
         start_frame=int(start) if start is not None else None,
         anno_begin=None,  # unknown in this format; resolved against the annotation length
         fps=float(rec["fps"]) if rec.get("fps") is not None else None,
@@ -374,8 +390,9 @@ def _read_text_result(path: Path, tracker: str) -> ImportedResult:
             times = np.loadtxt(tfile, ndmin=1, dtype=np.float64)
         except ValueError:
             times = None
-    return ImportedResult(tracker=tracker, sequence=path.stem, boxes=boxes, source=str(path),
-                          format="text", times=times)
+    return ImportedResult(
+        tracker=tracker, sequence=path.stem, boxes=boxes, source=str(path), format="text", times=times
+    )
 
 
 def _detect_format(path: Path) -> str:
@@ -403,9 +420,13 @@ def _detect_format(path: Path) -> str:
     raise ValueError(f"{path}: found no .mat, .json or .txt result files")
 
 
-def import_results(path, fmt: str = "auto", tracker_name: str | None = None,
-                   trackers: Iterable[str] | None = None,
-                   sequences: Iterable[str] | None = None) -> dict[str, dict[str, ImportedResult]]:
+def import_results(
+    path,
+    fmt: str = "auto",
+    tracker_name: str | None = None,
+    trackers: Iterable[str] | None = None,
+    sequences: Iterable[str] | None = None,
+) -> dict[str, dict[str, ImportedResult]]:
     """Read foreign per-frame results into ``{tracker: {sequence: ImportedResult}}``.
 
     ``path`` may be:
@@ -449,8 +470,11 @@ def import_results(path, fmt: str = "auto", tracker_name: str | None = None,
                 continue
             items.append(read_otb_mat(f))
     elif fmt == "otb-json":
-        files = [path] if path.is_file() else sorted(
-            f for f in path.rglob("*.json") if not any(part.startswith("scores_") for part in f.parts))
+        files = (
+            [path]
+            if path.is_file()
+            else sorted(f for f in path.rglob("*.json") if not any(part.startswith("scores_") for part in f.parts))
+        )
         for f in files:
             trk = f.parent.name
             if want_trk is not None and trk.lower() not in want_trk:
@@ -478,110 +502,18 @@ def import_results(path, fmt: str = "auto", tracker_name: str | None = None,
         out.setdefault(item.tracker, {})[item.sequence] = item
     if tracker_name is not None:
         if len(out) > 1:
-            raise ValueError(f"{path}: holds {len(out)} trackers ({', '.join(sorted(out))}); "
-                             "pick one with trackers=[...] before renaming it")
-        out = {tracker_name: {s: _renamed(r, tracker_name) for s, r in v.items()} for v in out.values()}
+            raise ValueError(
+                f"{path}: holds {len(out)} trackers ({', '.join(sorted(out))}); "
+                "pick one with trackers=[...] before renaming it"
+            )
+        only = next(iter(out.values()), {})
+        out = {tracker_name: {s: _renamed(r, tracker_name) for s, r in only.items()}} if out else {}
     return out
 
 
 def _renamed(r: ImportedResult, name: str) -> ImportedResult:
     r.tracker = name
     return r
-
-
-def _run_meta(run_dir: Path) -> dict:
-    meta_path = run_dir / "run.json"
-    if meta_path.is_file():
-        try:
-            meta = json.loads(meta_path.read_text(encoding="utf-8"))
-            return meta if isinstance(meta, dict) else {}
-        except ValueError:
-            return {}
-    return {}
-
-
-def _run_sequence_names(meta: dict) -> dict[str, str]:
-    """canonical -> name used by this run (run.json ``sequences``, else the dataset's names)."""
-    names: dict[str, str] = {}
-    for s in meta.get("sequences") or []:
-        names.setdefault(canonical_name(s), s)
-    dataset = meta.get("dataset")
-    if dataset and Path(dataset).is_dir():
-        try:
-            from smtmvt.data import list_dataset
-
-            for name, _folder, _target in list_dataset(dataset):
-                names.setdefault(canonical_name(name), name)
-        except Exception:  # noqa: BLE001 - fall back to the folder names
-            pass
-        for p in Path(dataset).iterdir():
-            if p.is_dir():
-                names.setdefault(canonical_name(p.name), p.name)
-    return names
-
-
-def import_into_run(run_dir, source, tracker_name: str | None = None, fmt: str = "auto",
-                    trackers: Iterable[str] | None = None,
-                    sequences: Iterable[str] | None = None) -> dict[str, list[str]]:
-    """Import foreign results into ``RUN_DIR/results/<tracker>/<seq>.txt`` so that the report
-    scores them with our metrics on our sequences, beside our own runs.
-
-    Only the run's sequences are imported when ``run.json`` lists them and ``sequences`` is
-    not given. Sequence files take the run's spelling of the name (``run.json`` sequences,
-    else the dataset's sequence names; else the source's). Per-frame times are written to
-    ``times/<seq>_time.txt`` when the source has them (text) or an fps (``1/fps`` per frame).
-    Provenance and the annotation offset of each sequence (Tiger1 starts at frame 6 in the
-    toolkit's files) go to ``results/<tracker>/import.json``. Returns
-    ``{tracker: [sequences written]}``.
-    """
-    run_dir = Path(run_dir)
-    meta = _run_meta(run_dir)
-    if sequences is None and meta.get("sequences"):
-        sequences = list(meta["sequences"])
-    found = import_results(source, fmt=fmt, tracker_name=tracker_name, trackers=trackers, sequences=sequences)
-    if not found:
-        raise ValueError(f"{source}: no results matched (trackers={trackers}, sequences={sequences})")
-    names = _run_sequence_names(meta)
-    written: dict[str, list[str]] = {}
-    for trk, seqs in found.items():
-        if not re.fullmatch(r"[\w.+-]+", trk):
-            raise ValueError(f"tracker name {trk!r}: use letters, digits, '.', '+', '-' or '_' only")
-        tdir = run_dir / "results" / trk
-        meta_path = tdir / "import.json"
-        meta = {}
-        if meta_path.is_file():
-            try:
-                meta = json.loads(meta_path.read_text(encoding="utf-8"))
-            except ValueError:
-                meta = {}
-        meta.setdefault("sequences", {})
-        for seq, res in sorted(seqs.items()):
-            name = names.get(canonical_name(seq), seq)
-            write_box_file(tdir / f"{name}.txt", res.boxes)
-            times = None
-            if res.times is not None and len(res.times) == len(res.boxes):
-                times = np.asarray(res.times, dtype=np.float64)
-            elif res.fps and res.fps > 0:
-                times = np.full(len(res.boxes), 1.0 / res.fps)
-            if times is not None:
-                (tdir / "times").mkdir(parents=True, exist_ok=True)
-                np.savetxt(tdir / "times" / f"{name}_time.txt", times, fmt="%.8f")
-            meta["sequences"][name] = {
-                "source": os.path.abspath(res.source),
-                "format": res.format,
-                "source_name": res.sequence,
-                "result_type": res.result_type,
-                "start_frame": res.start_frame,
-                "anno_begin": res.anno_begin,
-                "anno_offset": res.anno_offset,
-                "fps": res.fps,
-                "frames": int(len(res.boxes)),
-            }
-            written.setdefault(trk, []).append(name)
-        meta["imported"] = True
-        meta_path.parent.mkdir(parents=True, exist_ok=True)
-        meta_path.write_text(json.dumps(meta, indent=2, sort_keys=True), encoding="utf-8")
-    return written
 
 
 # --------------------------------------------------------------------------- attributes

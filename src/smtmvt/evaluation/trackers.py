@@ -12,9 +12,13 @@ gray or ``(H, W, 3)`` **RGB**. Each adapter converts them to what its tracker wa
 Built-in names
 --------------
 ``smtmvt``
-    Our tracker (:class:`smtmvt.Tracker`), fed the RGB/gray frame unchanged. Options:
-    ``seed``, ``config`` (a :class:`~smtmvt.config.TrackerConfig`) and any
-    ``TrackerConfig`` field (``n_particles=...``).
+    Our tracker (:class:`smtmvt.Tracker`) with ``TrackerConfig()`` defaults, fed the RGB/gray
+    frame unchanged. Options: ``seed``, ``config`` (a :class:`~smtmvt.config.TrackerConfig`)
+    and any ``TrackerConfig`` field (``n_particles=...``).
+``smtmvt-paper``
+    Our tracker as the paper describes it (``TrackerConfig.paper()``); same options.
+``smtmvt-l1t``, ``smtmvt-mtt``, ``smtmvt-mtmvt-ls``
+    The paper's comparison models as observation models of our particle filter.
 ``opencv-csrt``, ``opencv-kcf``, ``opencv-mil``
     OpenCV's current API (``cv2.TrackerXXX_create``). Options: the fields of
     ``cv2.TrackerXXX_Params`` (e.g. ``detect_thresh=0.2`` for KCF).
@@ -47,8 +51,10 @@ How the OpenCV peers are driven (:class:`OpenCVTracker`)
 - **Determinism**: ``cv2.setRNGSeed(seed)`` is called before each tracker is built. CSRT,
   KCF, MOSSE, MedianFlow and Boosting are deterministic. MIL and TLD draw from an OpenCV
   random state that ``setRNGSeed`` does not reach: the same in every fresh process, but a
-  second run in the same process differs, so their boxes can change with the order in
-  which a worker process runs its pairs.
+  second run in the same process differs. They are registered with ``fresh_process=True``:
+  the runner runs each of their pairs in a new process, so their boxes do not depend on
+  what a worker ran before. In a fresh process MIL's boxes depend on the seed (it is
+  repeated by ``--repeat``), TLD's do not (it is registered deterministic).
 - **KCF's "lost"**: OpenCV's KCF declares the target lost when its correlation peak is
   below ``detect_thresh`` (0.5) and then neither moves nor learns, so it freezes for the
   rest of the sequence. On small, low-contrast targets this happens within the first
@@ -62,11 +68,14 @@ from __future__ import annotations
 import functools
 import inspect
 import math
-import re
 import threading
-from typing import Callable, Protocol, runtime_checkable
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
+
+from .rundir import check_tracker_name
 
 __all__ = [
     "EvalTracker",
@@ -76,6 +85,8 @@ __all__ = [
     "unregister_tracker",
     "available_trackers",
     "get_factory",
+    "tracker_spec",
+    "TrackerSpec",
     "make_tracker",
     "to_bgr8",
     "UnknownTrackerError",
@@ -99,12 +110,34 @@ class UnknownTrackerError(ValueError):
     """A tracker name that is not registered; the message lists the known ones."""
 
 
-_REGISTRY: dict[str, Callable[..., EvalTracker]] = {}
+@dataclass(frozen=True)
+class TrackerSpec:
+    """A registered tracker: its factory and how the runner must drive it.
+
+    ``deterministic``: the same boxes for every seed, so ``--repeat`` runs it once.
+    ``fresh_process``: it keeps state that the seed does not reach (OpenCV's MIL and TLD), so
+    each (sequence, repeat) runs in a new process; a resumed or parallel run then equals an
+    uninterrupted one.
+    """
+
+    name: str
+    factory: Callable[..., EvalTracker]
+    deterministic: bool = False
+    fresh_process: bool = False
+
+
+_REGISTRY: dict[str, TrackerSpec] = {}
 _LOCK = threading.Lock()
-_NAME_RE = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
 
 
-def register_tracker(name: str, factory: Callable[..., EvalTracker], *, replace: bool = False) -> None:
+def register_tracker(
+    name: str,
+    factory: Callable[..., EvalTracker],
+    *,
+    replace: bool = False,
+    deterministic: bool | None = None,
+    fresh_process: bool | None = None,
+) -> None:
     """Register ``factory`` under ``name``.
 
     ``factory(**options)`` must return an object with ``init(frame, box)`` and
@@ -113,15 +146,25 @@ def register_tracker(name: str, factory: Callable[..., EvalTracker], *, replace:
     runs the factory must be picklable: a module-level function or class (or a
     ``functools.partial`` of one). The name is used as a directory name in run folders,
     so it may only hold letters, digits and ``_ . + -``.
+
+    ``deterministic`` / ``fresh_process`` (see :class:`TrackerSpec`) default to the
+    factory's own attributes of those names, else False: a factory can declare itself
+    deterministic (``MyTracker.deterministic = True``), as got10k's ``is_deterministic``.
     """
-    if not isinstance(name, str) or not _NAME_RE.match(name):
-        raise ValueError(f"invalid tracker name {name!r}: use letters, digits and _ . + - only")
+    try:
+        check_tracker_name(name)
+    except ValueError as exc:
+        raise ValueError(f"{exc}; the name is used as a folder name in run folders") from None
     if not callable(factory):
         raise TypeError(f"tracker factory for {name!r} is not callable")
+    if deterministic is None:
+        deterministic = bool(getattr(factory, "deterministic", False))
+    if fresh_process is None:
+        fresh_process = bool(getattr(factory, "fresh_process", False))
     with _LOCK:
         if name in _REGISTRY and not replace:
             raise ValueError(f"tracker {name!r} is already registered (pass replace=True)")
-        _REGISTRY[name] = factory
+        _REGISTRY[name] = TrackerSpec(name, factory, deterministic, fresh_process)
 
 
 def unregister_tracker(name: str) -> None:
@@ -136,15 +179,18 @@ def available_trackers() -> list[str]:
         return sorted(_REGISTRY)
 
 
+def tracker_spec(name: str) -> TrackerSpec:
+    """The :class:`TrackerSpec` registered under ``name``; :class:`UnknownTrackerError` if none."""
+    with _LOCK:
+        spec = _REGISTRY.get(name)
+    if spec is None:
+        raise UnknownTrackerError(f"unknown tracker {name!r}; available: {', '.join(available_trackers())}")
+    return spec
+
+
 def get_factory(name: str) -> Callable[..., EvalTracker]:
     """The factory registered under ``name``; :class:`UnknownTrackerError` if none."""
-    with _LOCK:
-        factory = _REGISTRY.get(name)
-    if factory is None:
-        raise UnknownTrackerError(
-            f"unknown tracker {name!r}; available: {', '.join(available_trackers())}"
-        )
-    return factory
+    return tracker_spec(name).factory
 
 
 def accepts_keyword(factory: Callable, keyword: str) -> bool:
@@ -259,8 +305,9 @@ class OpenCVTracker:
         module, create, params_cls, legacy = _OPENCV[name]
         owner = getattr(cv2, module) if module else cv2
         if not hasattr(owner, create):
-            raise RuntimeError(f"{name}: cv2{'.' + module if module else ''}.{create} is missing "
-                               f"(opencv-contrib-python is needed)")
+            raise RuntimeError(
+                f"{name}: cv2{'.' + module if module else ''}.{create} is missing (opencv-contrib-python is needed)"
+            )
         if params and params_cls is None:
             raise ValueError(f"{name} takes no options (got {sorted(params)})")
         self.name = name
@@ -268,6 +315,7 @@ class OpenCVTracker:
         self._create = getattr(owner, create)
         self._params = None
         if params:
+            assert params_cls is not None  # checked above
             p = getattr(cv2, params_cls)()
             for key, value in params.items():
                 if not hasattr(p, key):
@@ -276,7 +324,7 @@ class OpenCVTracker:
                 setattr(p, key, value)
             self._params = p
         self.seed = seed
-        self._tracker = None
+        self._tracker: Any = None
         self._box: Box | None = None
         self._scale = 1.0
         self.lost = False
@@ -317,7 +365,7 @@ class OpenCVTracker:
         self.lost_frames = 0
 
     def update(self, frame: np.ndarray) -> Box:
-        if self._tracker is None:
+        if self._tracker is None or self._box is None:
             raise RuntimeError(f"{self.name}: update() before init()")
         ok, rect = self._tracker.update(self._prepare(frame))
         s = self._scale
@@ -348,7 +396,7 @@ class SmtmvtAdapter:
         if seed is not None:
             fields["seed"] = int(seed)
         self.config = config.replace(**fields) if fields else config
-        self._tracker = None
+        self._tracker: Any = None
         self.last_result = None
 
     def init(self, frame: np.ndarray, box: Box) -> None:
@@ -367,13 +415,30 @@ def _smtmvt_factory(seed: int | None = None, **options) -> SmtmvtAdapter:
     return SmtmvtAdapter(seed=seed, **options)
 
 
+def _smtmvt_paper_factory(seed: int | None = None, **fields) -> SmtmvtAdapter:
+    """Our tracker as the paper describes it (:meth:`TrackerConfig.paper`), fields overridable."""
+    from ..config import TrackerConfig
+
+    return SmtmvtAdapter(seed=seed, config=TrackerConfig.paper(), **fields)
+
+
 register_tracker("smtmvt", _smtmvt_factory)
+register_tracker("smtmvt-paper", _smtmvt_paper_factory)
 # The paper's comparison models in our particle filter (TrackerConfig.model):
 # L1T and MTT code the intensity view only, MTMVT-LS all four views. MTMVT-LAD
 # is left out of the registry: its exact LAD solver is too slow per frame.
 register_tracker("smtmvt-l1t", functools.partial(_smtmvt_factory, model="l1t", views=("intensity",)))
 register_tracker("smtmvt-mtt", functools.partial(_smtmvt_factory, model="mtt", views=("intensity",)))
 register_tracker("smtmvt-mtmvt-ls", functools.partial(_smtmvt_factory, model="mtmvt-ls"))
+# OpenCV: MIL and TLD run in a fresh process per pair; TLD's boxes there do not depend on the
+# seed (measured: the same for seeds 1, 2, 5, 77, 123 on Girl and Crossing), MIL's do.
+_DETERMINISTIC = {"opencv-csrt", "opencv-kcf", "opencv-mosse", "opencv-medianflow", "opencv-boosting", "opencv-tld"}
+_FRESH_PROCESS = {"opencv-mil", "opencv-tld"}
 for _name in _OPENCV:
-    register_tracker(_name, functools.partial(_opencv_factory, _name))
+    register_tracker(
+        _name,
+        functools.partial(_opencv_factory, _name),
+        deterministic=_name in _DETERMINISTIC,
+        fresh_process=_name in _FRESH_PROCESS,
+    )
 del _name

@@ -1,0 +1,173 @@
+"""One unit of work of a run: one tracker over one sequence (one repeat), OTB one-pass.
+
+:class:`PairTask` holds everything a worker needs (picklable: tracker factory, sequence
+paths and ground truth, no pixels); :func:`run_pair` runs it and returns a
+:class:`PairOutcome` (boxes and times, or an error naming tracker, sequence, frame and
+file), never raising for bad data or a bad tracker.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import time
+import traceback
+import zlib
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..data import Sequence
+from .trackers import accepts_keyword
+
+__all__ = ["PairTask", "PairOutcome", "run_pair", "sequence_seed", "describe"]
+
+
+def sequence_seed(sequence: str, base: int = 0, repeat: int = 0) -> int:
+    """Deterministic seed of a (sequence, repeat): ``crc32(name) xor base`` for repeat 0,
+    ``crc32(f"{name}#{repeat}") xor base`` for the others; 31 bits."""
+    text = sequence if repeat == 0 else f"{sequence}#{repeat}"
+    return (zlib.crc32(text.encode("utf-8")) ^ int(base)) & 0x7FFFFFFF
+
+
+@dataclass(frozen=True)
+class PairTask:
+    """Everything a worker needs for one (tracker, sequence, repeat); picklable.
+
+    ``factory`` is the registry's factory (a module-level function or partial), resolved
+    in the driver so that trackers registered at run time work in worker processes too.
+    ``fresh_process``: run it in a new Python process (see :class:`~.trackers.TrackerSpec`).
+    """
+
+    tracker: str
+    factory: Callable
+    options: dict
+    sequence: Sequence  # paths + ground truth, no pixels
+    n_frames: int
+    seed: int
+    single_thread: bool = False
+    repeat: int = 0
+    fresh_process: bool = False
+
+    @property
+    def key(self) -> tuple:
+        return (self.tracker, self.sequence.name, self.repeat)
+
+    @property
+    def label(self) -> str:
+        """``tracker / sequence`` (``#r`` for repeats after the first), for messages."""
+        suffix = f" #{self.repeat}" if self.repeat else ""
+        return f"{self.tracker} / {self.sequence.name}{suffix}"
+
+
+@dataclass
+class PairOutcome:
+    """What a worker sends back: boxes ``(n, 4)`` 0-based and seconds ``(n,)``, or an error."""
+
+    tracker: str
+    sequence: str
+    n_frames: int
+    boxes: np.ndarray | None = None
+    times: np.ndarray | None = None
+    error: str | None = None
+    lost_frames: int | None = None
+    wall: float = 0.0
+
+    @property
+    def ok(self) -> bool:
+        return self.error is None
+
+
+def describe(exc: BaseException) -> str:
+    """``"TypeName: message"`` (just the type when the message is empty)."""
+    text = str(exc).strip()
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+
+
+class _Step:
+    """Where :func:`run_pair` is, for its error message."""
+
+    def __init__(self) -> None:
+        self.what = "creating the tracker"
+        self.frame: int | None = None
+
+
+def run_pair(task: PairTask, on_frame: Callable[[int], None] | None = None) -> PairOutcome:
+    """Run one tracker over one sequence (OPE). Never raises for bad data or a bad tracker:
+    the failure is returned in ``PairOutcome.error``, naming tracker, sequence, frame and file.
+
+    ``on_frame(k)`` is called with the number of frames just done (for progress bars).
+    """
+    from ..data import SequenceError
+
+    seq = task.sequence
+    t_start = time.perf_counter()
+    out = PairOutcome(task.tracker, seq.name, task.n_frames)
+    if task.single_thread:
+        with contextlib.suppress(Exception):
+            import cv2
+
+            cv2.setNumThreads(1)
+    step = _Step()
+    try:
+        options = dict(task.options)
+        if accepts_keyword(task.factory, "seed"):
+            options["seed"] = task.seed
+        else:
+            options.pop("seed", None)
+        tracker = task.factory(**options)
+        out.boxes, out.times = _track(tracker, seq, task.n_frames, step, on_frame)
+        out.lost_frames = getattr(tracker, "lost_frames", None)
+    except SequenceError as exc:  # names the file and the frame/line itself
+        out.error = f"{task.tracker} on {out.sequence}: {exc}"
+    except Exception as exc:  # noqa: BLE001 - one bad pair must never stop the run
+        out.error = _error_message(task, step, exc)
+    out.wall = time.perf_counter() - t_start
+    return out
+
+
+def _track(tracker, seq, n: int, step: _Step, on_frame) -> tuple[np.ndarray, np.ndarray]:
+    """Boxes ``(n, 4)`` (frame 0: the first ground-truth box) and seconds ``(n,)`` of the
+    tracker's own calls (init, update), excluding reading the frames."""
+    step.what = "reading the first ground-truth box"
+    first = tuple(float(v) for v in seq.first_box)
+    boxes = np.empty((n, 4), dtype=np.float64)
+    times = np.empty(n, dtype=np.float64)
+    for i in range(n):
+        step.frame, step.what = i, "reading"
+        frame = seq[i]
+        step.what = "tracking"
+        t0 = time.perf_counter()
+        if i == 0:
+            tracker.init(frame, first)
+            box = np.asarray(first)
+        else:
+            box = np.asarray(tracker.update(frame), dtype=np.float64).reshape(-1)
+        times[i] = time.perf_counter() - t0
+        if box.shape != (4,):
+            raise ValueError(f"update() returned {box.size} numbers, expected x, y, w, h")
+        boxes[i] = box
+        if on_frame is not None:
+            on_frame(1)
+    bad = ~np.isfinite(boxes).all(axis=1)
+    if bad.any():
+        step.frame, step.what = int(np.argmax(bad)), "checking the boxes"
+        raise ValueError(f"non-finite box {boxes[step.frame].tolist()} returned")
+    return boxes, times
+
+
+def _error_message(task: PairTask, step: _Step, exc: Exception) -> str:
+    seq = task.sequence
+    head = f"{task.tracker} on {seq.name}"
+    if step.frame is None:
+        msg = f"{head}: {step.what}: {describe(exc)}"
+    else:
+        files = getattr(seq, "files", None)
+        names = seq.frame_names
+        where = str(files[step.frame]) if files is not None else names[step.frame]
+        msg = f"{head}: frame {step.frame} ({where}): {step.what}: {describe(exc)}"
+    tb = traceback.extract_tb(exc.__traceback__)
+    if tb:  # where in the code, for the tracker's author
+        msg += f" [at {Path(tb[-1].filename).name}:{tb[-1].lineno}]"
+    return msg

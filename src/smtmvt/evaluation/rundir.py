@@ -1,0 +1,490 @@
+"""The run folder: one object owns every path in it, its lock, its settings and its files.
+
+Layout (``RUN_DIR`` = :attr:`RunDir.root`)::
+
+    run.json                                   settings (RunInfo): dataset, trackers, sequences,
+                                               attributes, published, max_frames, repeat
+    errors.json                                [{"tracker", "sequence", "repeat", "error"}, ...]
+    .lock                                      held (flock) by the command working on the run
+    results/<tracker>/<seq>.txt                repeat 0: 1-based x,y,w,h per frame (got10k/pysot)
+    results/<tracker>/times/<seq>_time.txt     seconds per frame of repeat 0
+    results/<tracker>/repeat-<r>/<seq>.txt     repeat r = 1..N-1 (the same layout one level down)
+    results/<tracker>/repeat-<r>/times/<seq>_time.txt
+    results/<tracker>/import.json              only for imported trackers: provenance
+    report/                                    summary.json, table.md/.csv, plots, index.html
+
+Repeat 0 sits where got10k's ``ExperimentOTB`` and pysot look for a tracker's results, so
+any tool reading that layout reads a repeated run's first repeat; each ``repeat-<r>``
+folder is itself such a tracker folder.
+
+Every write goes through :meth:`RunDir.write_bytes` (atomic, and only to paths inside the
+run through real folders); names used as path components are checked first
+(:func:`check_tracker_name`, :func:`check_sequence_name`), so no input, however named,
+makes a file appear outside ``RUN_DIR``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import json
+import os
+import re
+import shutil
+from collections.abc import Iterable, Iterator
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..data import SequenceError, read_boxes, write_boxes, write_bytes_atomic
+
+__all__ = [
+    "RunDir",
+    "RunInfo",
+    "RunDirError",
+    "RunLockedError",
+    "ErrorLog",
+    "check_tracker_name",
+    "check_sequence_name",
+]
+
+RUN_JSON = "run.json"
+ERRORS_JSON = "errors.json"
+LOCK = ".lock"
+RESULTS = "results"
+REPORT = "report"
+IMPORT_JSON = "import.json"
+_TRACKER_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]*")
+_REPEAT_DIR = re.compile(r"repeat-([1-9][0-9]*)")
+
+
+class RunDirError(ValueError):
+    """A run folder that cannot be used as asked (the message names it and says why)."""
+
+
+class RunLockedError(RunDirError):
+    """Another command holds the run folder's lock."""
+
+
+def check_tracker_name(name: str) -> str:
+    """``name`` if it can be a folder name in ``results/`` (letters, digits, ``_ . + -``,
+    starting with a letter or digit); ``ValueError`` otherwise."""
+    if not isinstance(name, str) or not _TRACKER_NAME.fullmatch(name):
+        raise ValueError(
+            f"invalid tracker name {name!r}: use letters, digits and _ . + - only (starting with a letter or digit)"
+        )
+    return name
+
+
+def check_sequence_name(name: str) -> str:
+    """``name`` if it is a plain file name (no folder part, not hidden, not ``..``)."""
+    if (
+        not isinstance(name, str)
+        or not name.strip()
+        or name != os.path.basename(name)
+        or "/" in name
+        or "\\" in name
+        or name.startswith(".")
+        or "\0" in name
+    ):
+        raise ValueError(f"invalid sequence name {name!r}: it must be a plain file name")
+    return name
+
+
+@dataclass
+class RunInfo:
+    """The settings of a run folder, as in ``run.json``.
+
+    ``max_frames`` None means every frame; ``repeat`` is the number of repeats of the
+    stochastic trackers the folder holds (1 for runs made before repeats existed).
+    Keys of ``run.json`` not listed here are kept in ``extra`` and written back.
+    """
+
+    dataset: str | None = None
+    trackers: list = field(default_factory=list)
+    sequences: list = field(default_factory=list)
+    attributes: str | None = None
+    published: str | None = None
+    max_frames: int | None = None
+    repeat: int = 1
+    extra: dict = field(default_factory=dict)
+
+    @classmethod
+    def from_json(cls, data: dict, path: Path) -> RunInfo:
+        known = {k: data[k] for k in ("dataset", "attributes", "published", "max_frames") if k in data}
+        info = cls(**known, extra={k: v for k, v in data.items() if k not in cls.__dataclass_fields__})
+        info.trackers = list(data.get("trackers") or [])
+        info.sequences = list(data.get("sequences") or [])
+        info.repeat = data.get("repeat") or 1
+        for key in ("max_frames", "repeat"):
+            value = getattr(info, key)
+            if value is not None and (not isinstance(value, int) or value < 1):
+                raise RunDirError(f"{path}: {key} must be a whole number >= 1, got {value!r}")
+        return info
+
+    def to_json(self) -> dict:
+        data = asdict(self)
+        extra = data.pop("extra")
+        return {**extra, **data}
+
+
+class ErrorLog:
+    """``errors.json``: one message per (tracker, sequence, repeat), rewritten atomically on
+    every change. ``sequence`` None: an error of the tracker itself (unknown name, bad
+    options)."""
+
+    def __init__(self, run: RunDir):
+        self.run = run
+        self.entries: dict[tuple, str] = {}
+        path = run.errors_json
+        if path.is_file():
+            try:
+                for e in json.loads(path.read_text(encoding="utf-8")):
+                    key = (e.get("tracker"), e.get("sequence"), int(e.get("repeat") or 0))
+                    self.entries[key] = str(e.get("error"))
+            except (ValueError, TypeError, AttributeError, OSError):
+                self.entries = {}  # a damaged errors.json is rebuilt from this run
+
+    def set(self, tracker, sequence, error: str, repeat: int = 0) -> None:
+        self.entries[(tracker, sequence, repeat)] = error
+        self.save()
+
+    def clear(self, tracker, sequence, repeat: int = 0) -> None:
+        if self.entries.pop((tracker, sequence, repeat), None) is not None:
+            self.save()
+
+    def drop(self, keep) -> None:
+        """Remove the entries for which ``keep(tracker, sequence, repeat)`` is False."""
+        self.entries = {k: v for k, v in self.entries.items() if keep(*k)}
+        self.save()
+
+    def as_list(self) -> list[dict]:
+        return [{"tracker": t, "sequence": s, "repeat": r, "error": e} for (t, s, r), e in self.entries.items()]
+
+    def save(self) -> None:
+        self.run.write_text(self.run.errors_json, json.dumps(self.as_list(), indent=1) + "\n")
+
+
+class RunDir:
+    """A run folder (see the module docstring for its layout).
+
+    ``RunDir(path)`` does no I/O. The folder is a run once it has ``run.json``
+    (:meth:`create` / :meth:`settle` writes it); the report and imports refuse a folder that
+    is not (:meth:`info`).
+    """
+
+    def __init__(self, root) -> None:
+        self.root = Path(root).expanduser().resolve()
+        self._lock_fd: int | None = None
+        self._lock_depth = 0
+
+    def __repr__(self) -> str:
+        return f"RunDir({str(self.root)!r})"
+
+    # ------------------------------------------------------------------ paths
+    @property
+    def run_json(self) -> Path:
+        return self.root / RUN_JSON
+
+    @property
+    def errors_json(self) -> Path:
+        return self.root / ERRORS_JSON
+
+    @property
+    def results_dir(self) -> Path:
+        return self.root / RESULTS
+
+    @property
+    def report_dir(self) -> Path:
+        return self.root / REPORT
+
+    def tracker_dir(self, tracker: str, repeat: int = 0) -> Path:
+        """``results/<tracker>`` for repeat 0, ``results/<tracker>/repeat-<r>`` after."""
+        base = self.results_dir / check_tracker_name(tracker)
+        if repeat == 0:
+            return base
+        if not isinstance(repeat, int) or repeat < 0:
+            raise ValueError(f"repeat must be a whole number >= 0, got {repeat!r}")
+        return base / f"repeat-{repeat}"
+
+    def result_path(self, tracker: str, sequence: str, repeat: int = 0) -> Path:
+        """``results/<tracker>[/repeat-<r>]/<sequence>.txt``."""
+        return self.tracker_dir(tracker, repeat) / f"{check_sequence_name(sequence)}.txt"
+
+    def times_path(self, tracker: str, sequence: str, repeat: int = 0) -> Path:
+        """``results/<tracker>[/repeat-<r>]/times/<sequence>_time.txt``."""
+        return self.tracker_dir(tracker, repeat) / "times" / f"{check_sequence_name(sequence)}_time.txt"
+
+    def import_json(self, tracker: str) -> Path:
+        return self.tracker_dir(tracker) / IMPORT_JSON
+
+    def import_meta(self, tracker: str) -> dict:
+        """``import.json`` of an imported tracker (``{"imported": True, "sequences": {seq:
+        provenance}}``); an empty dict when there is none or it cannot be read."""
+        try:
+            meta = json.loads(self.import_json(tracker).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return {}
+        return meta if isinstance(meta, dict) else {}
+
+    def is_imported(self, tracker: str) -> bool:
+        """True when ``results/<tracker>`` holds imported results (``import.json``)."""
+        return self.import_json(tracker).is_file()
+
+    def tracker_folders(self) -> list[str]:
+        """Names of the tracker folders under ``results/`` (valid names only), sorted."""
+        if not self.results_dir.is_dir():
+            return []
+        names = [p.name for p in self.results_dir.iterdir() if p.is_dir() and _TRACKER_NAME.fullmatch(p.name)]
+        return sorted(names, key=str.lower)
+
+    def repeats_on_disk(self, tracker: str) -> int:
+        """1 + the highest ``repeat-<r>`` folder of ``tracker`` (1 when there is none)."""
+        base = self.tracker_dir(tracker)
+        found = [int(m.group(1)) for p in base.glob("repeat-*") if (m := _REPEAT_DIR.fullmatch(p.name)) and p.is_dir()]
+        return 1 + max(found, default=0)
+
+    # ------------------------------------------------------------------ writing
+    def _checked(self, path) -> Path:
+        """``path`` (absolute or relative to the root) if it lies inside the run and every
+        existing folder on the way is a real folder, not a link; RunDirError otherwise."""
+        path = Path(path)
+        path = path if path.is_absolute() else self.root / path
+        norm = Path(os.path.normpath(path))
+        if norm == self.root or self.root not in norm.parents:
+            raise RunDirError(f"refusing to write {path}: outside the run folder {self.root}")
+        for folder in reversed(norm.parents):
+            if folder == self.root or self.root in folder.parents:
+                if folder.is_symlink():
+                    raise RunDirError(f"refusing to write {norm}: {folder} is a symbolic link")
+        return norm
+
+    def write_bytes(self, path, data: bytes) -> Path:
+        """Write ``data`` atomically at ``path`` inside the run (a link there is replaced)."""
+        return write_bytes_atomic(self._checked(path), data)
+
+    def write_text(self, path, text: str) -> Path:
+        return self.write_bytes(path, text.encode("utf-8"))
+
+    def write_result(self, tracker: str, sequence: str, boxes, times=None, repeat: int = 0) -> Path:
+        """Write one pair's times file (when given), then its result file (the completion
+        marker), each atomically. ``boxes``: ``(n, 4)`` 0-based; ``times``: ``(n,)`` s."""
+        if times is not None:
+            text = "".join(f"{float(t):.9f}\n" for t in np.asarray(times, dtype=np.float64).ravel())
+            self.write_text(self.times_path(tracker, sequence, repeat), text)
+        return write_boxes(self._checked(self.result_path(tracker, sequence, repeat)), boxes)
+
+    # ------------------------------------------------------------------ reading our own files
+    def read_result(self, tracker: str, sequence: str, repeat: int = 0, n_frames: int | None = None) -> np.ndarray:
+        """Boxes ``(n, 4)`` as written (1-based) of one result file, read strictly
+        (:func:`smtmvt.data.read_boxes`); with ``n_frames``, exactly that many rows.
+        ``SequenceError`` naming the file (and line) otherwise."""
+        path = self.result_path(tracker, sequence, repeat)
+        boxes = read_boxes(path, one_based=True)
+        if n_frames is not None and len(boxes) != n_frames:
+            rel = path.relative_to(self.root)
+            raise SequenceError(f"{rel}: {len(boxes)} lines for {n_frames} frames of {sequence}", path=path)
+        return boxes
+
+    def result_problem(self, tracker: str, sequence: str, n_frames: int, repeat: int = 0) -> str | None:
+        """None when the pair's result file is complete: ``n_frames`` well-formed lines of
+        finite numbers. Otherwise why not (``"missing"`` when there is no file)."""
+        path = self.result_path(tracker, sequence, repeat)
+        if not path.exists():
+            return "missing"
+        try:
+            boxes = self.read_result(tracker, sequence, repeat, n_frames)
+        except SequenceError as exc:
+            return str(exc)
+        bad = ~np.isfinite(boxes).all(axis=1)
+        if bad.any():
+            return f"{path.relative_to(self.root)}, line {int(np.argmax(bad)) + 1}: not a finite box"
+        return None
+
+    def read_times(self, tracker: str, sequence: str, repeat: int = 0) -> np.ndarray | None:
+        """Seconds per frame ``(n,)`` of one pair, or None when the file is missing or not
+        one finite non-negative number per line."""
+        path = self.times_path(tracker, sequence, repeat)
+        try:
+            lines = [line for line in path.read_text(encoding="utf-8").splitlines() if line.strip()]
+            times = np.array([float(v) for v in lines], dtype=np.float64)
+        except (OSError, ValueError):
+            return None
+        if not times.size or not np.all(np.isfinite(times)) or np.any(times < 0):
+            return None
+        return times
+
+    # ------------------------------------------------------------------ run.json
+    def info(self) -> RunInfo:
+        """The settings in ``run.json``; RunDirError when the folder is not a run."""
+        if not self.root.is_dir():
+            raise FileNotFoundError(f"run folder not found: {self.root}")
+        if not self.run_json.is_file():
+            raise RunDirError(
+                f"{self.root} is not a run folder (no {RUN_JSON}); make one with smtmvt evaluate --out {self.root}"
+            )
+        return self._read_info()
+
+    def _read_info(self) -> RunInfo:
+        try:
+            data = json.loads(self.run_json.read_text(encoding="utf-8"))
+        except (OSError, ValueError) as exc:
+            raise RunDirError(f"{self.run_json}: not valid JSON ({exc}); remove it or choose another --out") from None
+        if not isinstance(data, dict):
+            raise RunDirError(f"{self.run_json}: expected a JSON object; remove it or choose another --out")
+        return RunInfo.from_json(data, self.run_json)
+
+    def save_info(self, info: RunInfo) -> None:
+        self.write_text(self.run_json, json.dumps(info.to_json(), indent=1) + "\n")
+
+    def errors(self) -> ErrorLog:
+        return ErrorLog(self)
+
+    # ------------------------------------------------------------------ lock
+    @contextlib.contextmanager
+    def locked(self, command: str = "smtmvt", *, create: bool = False) -> Iterator[RunDir]:
+        """Hold the run's lock (an exclusive ``flock`` on ``.lock``) for the block.
+
+        ``create``: make the folder if needed (``evaluate``); otherwise the folder must
+        already be a run (:meth:`info`), and nothing is created in one that is not.
+        Re-entrant for this object. A second command on the same folder gets a
+        :class:`RunLockedError` naming the holder at once (no waiting). The lock dies with
+        its process, so a killed run never leaves the folder locked.
+        """
+        if self._lock_depth:
+            self._lock_depth += 1
+            try:
+                yield self
+            finally:
+                self._lock_depth -= 1
+            return
+        if create:
+            self.root.mkdir(parents=True, exist_ok=True)
+        else:
+            self.info()
+        fd = _acquire(self.root / LOCK, command)
+        self._lock_fd, self._lock_depth = fd, 1
+        try:
+            yield self
+        finally:
+            self._lock_fd, self._lock_depth = None, 0
+            os.close(fd)
+
+    # ------------------------------------------------------------------ starting a run
+    def settle(
+        self,
+        dataset: Path,
+        *,
+        trackers: Iterable[str],
+        sequences: Iterable[str],
+        max_frames: int | None,
+        repeat: int | None,
+        attributes=None,
+        published=None,
+        overwrite: bool = False,
+    ) -> tuple[RunInfo, list[str]]:
+        """Check this command's settings against the folder's and write ``run.json``.
+
+        A folder keeps one dataset and one frame limit: a different one is a RunDirError
+        naming both, unless ``overwrite`` (then results, errors and report are removed
+        first). ``repeat`` None takes the folder's count; a larger one is stored (later
+        repeats are added), a smaller one is used for this command only. Tracker and
+        sequence lists are merged (first-seen order). Returns ``(info, notes)``; the
+        returned ``info.repeat`` is this command's count. Call under :meth:`locked`.
+        """
+        notes: list[str] = []
+        self._remove_stale_temporaries(notes)
+        old = self._read_info() if self.run_json.is_file() else None
+        if old is not None:
+            clash = _settings_clash(self, old, dataset, max_frames)
+            if clash and not overwrite:
+                raise RunDirError(clash)
+            if clash:
+                notes.append(self._wipe())
+                old = None
+        elif self.results_dir.exists() and any(self.results_dir.iterdir()):
+            raise RunDirError(
+                f"{self.root} has results/ but no {RUN_JSON}: not a run folder of ours; choose another --out"
+            )
+        info = old or RunInfo()
+        stored = info.repeat
+        info.dataset = str(dataset)
+        info.trackers = _merge(info.trackers, trackers)
+        info.sequences = _merge(info.sequences, sequences)
+        info.attributes = str(Path(attributes).resolve()) if attributes else info.attributes
+        info.published = str(Path(published).resolve()) if published else info.published
+        info.max_frames = max_frames
+        wanted = stored if repeat is None else repeat
+        info.repeat = max(stored, wanted) if old is not None else wanted
+        self.save_info(info)
+        if wanted < info.repeat:
+            notes.append(f"{self.root} holds {info.repeat} repeats; this command uses the first {wanted}")
+        return RunInfo(**{**asdict(info), "repeat": wanted}), notes
+
+    def _remove_stale_temporaries(self, notes: list[str]) -> None:
+        """Delete the temporary files of atomic writes that a killed command left (hidden
+        ``.<name>.<random>.tmp`` beside their target; no reader ever takes them for results).
+        Safe under the lock: no other command is writing."""
+        stale = [p for p in self.root.rglob(".*.tmp") if p.is_file()] if self.root.is_dir() else []
+        for p in stale:
+            p.unlink(missing_ok=True)
+        if stale:
+            notes.append(f"removed {len(stale)} temporary file(s) left by an interrupted command")
+
+    def _wipe(self) -> str:
+        """Remove results/, errors.json and report/ (for ``--overwrite``); say what went."""
+        n = sum(1 for p in self.results_dir.rglob("*.txt")) if self.results_dir.is_dir() else 0
+        for folder in (self.results_dir, self.report_dir):
+            if folder.is_symlink():
+                folder.unlink()
+            elif folder.exists():
+                shutil.rmtree(folder)
+        self.errors_json.unlink(missing_ok=True)
+        return f"--overwrite: removed {n} result/times file(s), errors.json and report/ of {self.root}"
+
+
+def _settings_clash(run: RunDir, old: RunInfo, dataset: Path, max_frames: int | None) -> str | None:
+    if old.dataset and Path(old.dataset).resolve() != dataset:
+        return (
+            f"{run.root} holds results for dataset {old.dataset}, not {dataset}; "
+            f"choose another --out (results of different datasets must not mix)"
+        )
+    if old.max_frames != max_frames:
+
+        def limit(v):
+            return "all frames" if v is None else f"--max-frames {v}"
+
+        return (
+            f"{run.root} was run with {limit(old.max_frames)} (run.json); this command asks for "
+            f"{limit(max_frames)}. Repeat the same setting to resume it, choose another --out, or pass "
+            f"--overwrite to discard its results"
+        )
+    return None
+
+
+def _merge(old: Iterable, new: Iterable) -> list:
+    out: list = []
+    for x in [*old, *new]:
+        if x not in out:
+            out.append(x)
+    return out
+
+
+def _acquire(path: Path, command: str) -> int:
+    import fcntl
+
+    fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o644)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except OSError as exc:
+        holder = os.pread(fd, 200, 0).decode("utf-8", "replace").strip() or "another process"
+        os.close(fd)
+        if exc.errno in (errno.EAGAIN, errno.EACCES, errno.EWOULDBLOCK):
+            raise RunLockedError(
+                f"{path.parent} is in use by {holder}; wait for it to finish or choose another run folder"
+            ) from None
+        raise
+    os.ftruncate(fd, 0)
+    os.pwrite(fd, f"{command} (pid {os.getpid()})\n".encode(), 0)
+    return fd

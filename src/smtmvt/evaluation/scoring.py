@@ -1,0 +1,292 @@
+"""Scoring a run folder: stored results -> one plain summary (nothing is written here).
+
+:func:`score_run` reads every (tracker, sequence, repeat) result of a :class:`~.rundir.RunDir`
+with the strict reader, scores it with :mod:`.metrics` against the dataset's ground truth and
+returns a :class:`Summary`; :mod:`.report` turns that into files.
+
+Repeats
+-------
+A stochastic tracker of a run with ``repeat = N`` is scored on each of its N repeats; the
+numbers reported are means over the repeats, beside their sample standard deviation
+(``ddof=1``): per sequence ``avg_overlap`` / ``avg_overlap_std``, ``auc`` / ``auc_std``,
+``precision20`` / ``precision20_std``; overall the same over each repeat's figure (its
+curves averaged over the sequences, as OTB does); the curves are the means of the repeats'
+curves. A deterministic tracker has one repeat and spread 0.0; an imported tracker one run
+and spread None (unknown), as has a stochastic tracker of a run with ``repeat = 1``. A
+sequence is scored only when all the repeats it needs are there and usable; otherwise it is a
+gap (``errors``) naming the first missing or bad file.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..data import SequenceError, canonical_name
+from .groundtruth import GroundTruth
+from .metrics import SequenceScore, aggregate, score_sequence
+from .rundir import RunDir, RunInfo
+from .trackers import UnknownTrackerError, tracker_spec
+
+__all__ = ["Summary", "score_run", "PROTOCOL"]
+
+PROTOCOL = (
+    "OTB OPE: IoU with inclusive pixel extents, success = IoU > t for t in 0:0.05:1, "
+    "AUC = mean, precision = centre error <= t px for t in 0..50, score at 20 px, "
+    "curves averaged over sequences, frame 1 = ground truth"
+)
+
+
+@dataclass
+class Summary:
+    """Everything the report shows; ``asdict`` of it is ``summary.json``.
+
+    ``trackers``: ``{name: entry}`` with ``auc``, ``auc_std``, ``precision20``,
+    ``precision20_std``, ``avg_overlap``, ``avg_overlap_std``, ``fps`` (frames / tracking
+    seconds, pooled), ``n_sequences``, ``n_runs``, ``deterministic``, ``imported``,
+    ``success`` (21 values), ``precision`` (51), ``sequences`` (``{seq: {avg_overlap,
+    avg_overlap_std, auc, auc_std, precision20, precision20_std, fps, n_frames, n_valid,
+    n_runs}}``), ``attributes`` (``{ATTR: {auc, auc_std, precision20, n_sequences, success,
+    precision}}``) and ``errors`` (``{seq: message}``). ``sequences``: the scored sequences;
+    ``table_sequences``: every row of the table (scored or not).
+    """
+
+    trackers: dict
+    sequences: list
+    table_sequences: list
+    attributes: dict
+    published: dict | None
+    errors: list
+    settings: dict
+    plots: list = field(default_factory=list)
+    files: list = field(default_factory=list)
+
+
+@dataclass
+class _Runs:
+    """One tracker's scores on one sequence, one per repeat."""
+
+    scores: list[SequenceScore]
+    frames_timed: int = 0
+    seconds: float = 0.0
+
+    @property
+    def fps(self) -> float | None:
+        return self.frames_timed / self.seconds if self.seconds > 0 else None
+
+
+def _spread(values, n_runs: int, deterministic: bool) -> float | None:
+    if n_runs >= 2:
+        return float(np.std(values, ddof=1))
+    return 0.0 if deterministic else None
+
+
+def score_run(
+    run: RunDir,
+    info: RunInfo,
+    gt: GroundTruth,
+    *,
+    trackers: list[str],
+    sequences: list[str],
+    repeat: int,
+    invalid: str = "otb",
+    attribute_table: dict | None = None,
+) -> Summary:
+    """Score ``trackers`` x ``sequences`` of ``run`` (first ``repeat`` repeats).
+
+    ``attribute_table``: ``{canonical name: {codes}}`` for the per-attribute figures.
+    Errors of the run (``errors.json``) and every unusable result become ``errors`` entries
+    ``{"tracker", "sequence", "error", "stage"}`` (stage ``run`` or ``report``).
+    """
+    errors = _run_errors(run)
+    failed_in_run = {(e["tracker"], canonical_name(e["sequence"] or "")) for e in errors}
+    scored_seqs, gts = [], {}
+    for seq in sequences:
+        try:
+            gts[seq] = gt.load(seq)
+            scored_seqs.append(seq)
+        except (OSError, ValueError) as exc:
+            errors.append({"tracker": None, "sequence": seq, "error": str(exc), "stage": "report"})
+    entries, all_runs = {}, {}
+    for t in trackers:
+        all_runs[t], pair_errors = _score_tracker(run, info, t, scored_seqs, gts, repeat, invalid)
+        for seq, msg in pair_errors.items():
+            if (t, canonical_name(seq)) in failed_in_run:
+                pair_errors[seq] = "failed in the run (errors.json)"
+            else:
+                errors.append({"tracker": t, "sequence": seq, "error": msg, "stage": "report"})
+        for seq in sequences:
+            if seq not in gts:
+                pair_errors[seq] = "no ground truth"
+        entries[t] = _tracker_entry(run, t, all_runs[t], pair_errors, repeat)
+    subsets = _attribute_subsets(attribute_table, scored_seqs, all_runs)
+    for t, entry in entries.items():
+        entry["attributes"] = _attribute_entries(all_runs[t], subsets, entry)
+    return Summary(
+        trackers=entries,
+        sequences=scored_seqs,
+        table_sequences=list(sequences),
+        attributes=subsets,
+        published=None,
+        errors=errors,
+        settings={},
+    )
+
+
+def _run_errors(run: RunDir) -> list[dict]:
+    out = []
+    for e in run.errors().as_list():
+        where = "" if not e["repeat"] else f" (repeat {e['repeat']})"
+        out.append({"tracker": e["tracker"], "sequence": e["sequence"], "error": e["error"] + where, "stage": "run"})
+    return out
+
+
+def _is_deterministic(run: RunDir, tracker: str) -> bool:
+    try:
+        return tracker_spec(tracker).deterministic
+    except UnknownTrackerError:
+        return False
+
+
+def _runs_needed(run: RunDir, tracker: str, repeat: int) -> int:
+    if run.is_imported(tracker) or _is_deterministic(run, tracker):
+        return 1
+    return repeat
+
+
+def _score_tracker(run, info, tracker, seqs, gts, repeat, invalid) -> tuple[dict[str, _Runs], dict[str, str]]:
+    runs: dict[str, _Runs] = {}
+    problems: dict[str, str] = {}
+    offsets = _import_offsets(run, tracker)
+    for seq in seqs:
+        gt = gts[seq] if info.max_frames is None else gts[seq][: info.max_frames]
+        got = _Runs([])
+        try:
+            for r in range(_runs_needed(run, tracker, repeat)):
+                got.scores.append(_score_one(run, tracker, seq, r, gt, offsets.get(canonical_name(seq), 0), invalid))
+                times = run.read_times(tracker, seq, r)
+                if times is not None:
+                    got.frames_timed += times.size
+                    got.seconds += float(times.sum())
+        except (OSError, ValueError) as exc:
+            problems[seq] = str(exc)
+            continue
+        runs[seq] = got
+    return runs, problems
+
+
+def _score_one(run: RunDir, tracker: str, seq: str, r: int, gt: np.ndarray, offset: int, invalid: str):
+    path = run.result_path(tracker, seq, r)
+    rel = path.relative_to(run.root)
+    if not path.exists():
+        raise ValueError(f"missing result file {rel}")
+    try:
+        boxes = run.read_result(tracker, seq, r)
+    except SequenceError as exc:
+        raise ValueError(str(exc).replace(str(path), str(rel))) from None
+    if len(boxes) != len(gt) and offset and len(gt) == offset + len(boxes):
+        gt = gt[offset:]  # the toolkit's files start later (Tiger1 from frame 6)
+    if len(boxes) != len(gt):
+        side = "shorter" if len(boxes) < len(gt) else "longer"
+        raise ValueError(
+            f"{rel}: result file {side} than its sequence: {len(boxes)} lines, sequence {seq} has {len(gt)} frames"
+        )
+    return score_sequence(boxes, gt, invalid=invalid)
+
+
+def _import_offsets(run: RunDir, tracker: str) -> dict[str, int]:
+    """``{canonical sequence: annotation offset}`` from an imported tracker's ``import.json``."""
+    try:
+        records = run.import_meta(tracker).get("sequences", {})
+        return {canonical_name(s): int(rec.get("anno_offset") or 0) for s, rec in records.items()}
+    except (ValueError, AttributeError, TypeError):
+        return {}
+
+
+def _tracker_entry(run: RunDir, tracker: str, runs: dict[str, _Runs], errors: dict[str, str], repeat: int) -> dict:
+    n_runs = _runs_needed(run, tracker, repeat)
+    det = _is_deterministic(run, tracker)
+    entry: dict = {
+        "auc": None,
+        "auc_std": None,
+        "precision20": None,
+        "precision20_std": None,
+        "avg_overlap": None,
+        "avg_overlap_std": None,
+        "fps": None,
+        "n_sequences": len(runs),
+        "n_runs": n_runs,
+        "deterministic": det,
+        "imported": run.is_imported(tracker),
+        "success": None,
+        "precision": None,
+        "sequences": {},
+        "errors": dict(errors),
+    }
+    for seq, got in runs.items():
+        entry["sequences"][seq] = _stats(got.scores, n_runs, det) | {
+            "fps": got.fps,
+            "n_frames": int(got.scores[0].n_frames),
+            "n_valid": int(got.scores[0].n_valid),
+            "n_runs": n_runs,
+        }
+    if runs:
+        per_run = [aggregate([got.scores[r] for got in runs.values()]) for r in range(n_runs)]
+        overlaps = [float(np.mean([got.scores[r].avg_overlap for got in runs.values()])) for r in range(n_runs)]
+        entry.update(
+            auc=float(np.mean([a.auc for a in per_run])),
+            auc_std=_spread([a.auc for a in per_run], n_runs, det),
+            precision20=float(np.mean([a.precision20 for a in per_run])),
+            precision20_std=_spread([a.precision20 for a in per_run], n_runs, det),
+            avg_overlap=float(np.mean(overlaps)),
+            avg_overlap_std=_spread(overlaps, n_runs, det),
+            success=np.mean([a.success for a in per_run], axis=0).tolist(),
+            precision=np.mean([a.precision for a in per_run], axis=0).tolist(),
+        )
+        timed = [got for got in runs.values() if got.seconds > 0]
+        if timed:
+            entry["fps"] = sum(g.frames_timed for g in timed) / sum(g.seconds for g in timed)
+    return entry
+
+
+def _stats(scores: list[SequenceScore], n_runs: int, det: bool) -> dict:
+    out: dict[str, float | None] = {}
+    for key in ("avg_overlap", "auc", "precision20"):
+        values = [float(getattr(s, key)) for s in scores]
+        out[key] = float(np.mean(values))
+        out[f"{key}_std"] = _spread(values, n_runs, det)
+    return out
+
+
+def _attribute_subsets(table: dict | None, seqs: list[str], all_runs: dict[str, dict]) -> dict[str, dict]:
+    """``{ATTR: {"name", "sequences"}}`` for the attributes that a scored pair has."""
+    from ..data.attributes import ATTRIBUTE_NAMES, ATTRIBUTES
+
+    if not table:
+        return {}
+    out = {}
+    for a in ATTRIBUTES:
+        members = [s for s in seqs if a in table.get(canonical_name(s), ())]
+        if members and any(s in runs for runs in all_runs.values() for s in members):
+            out[a] = {"name": ATTRIBUTE_NAMES[a], "sequences": members}
+    return out
+
+
+def _attribute_entries(runs: dict[str, _Runs], subsets: dict, entry: dict) -> dict:
+    out = {}
+    for a, subset in subsets.items():
+        got = [runs[s] for s in subset["sequences"] if s in runs]
+        if not got:
+            continue
+        n_runs = entry["n_runs"]
+        per_run = [aggregate([g.scores[r] for g in got]) for r in range(n_runs)]
+        out[a] = {
+            "auc": float(np.mean([p.auc for p in per_run])),
+            "auc_std": _spread([p.auc for p in per_run], n_runs, entry["deterministic"]),
+            "precision20": float(np.mean([p.precision20 for p in per_run])),
+            "n_sequences": len(got),
+            "success": np.mean([p.success for p in per_run], axis=0).tolist(),
+            "precision": np.mean([p.precision for p in per_run], axis=0).tolist(),
+        }
+    return out

@@ -1,0 +1,146 @@
+"""The average-overlap table of a report (the paper's table) as Markdown, CSV and HTML.
+
+Rows are sequences, columns trackers, then Average / AUC / Precision / FPS rows; the best
+value of each row is bold (compared at the digits shown). With repeats (``repeat > 1``) a
+cell shows ``mean ± std`` over the repeats and the CSV has a ``<tracker>_std`` column beside
+each tracker.
+"""
+
+from __future__ import annotations
+
+import csv
+import html
+import io
+from dataclasses import dataclass
+
+from .scoring import Summary
+
+__all__ = ["markdown_table", "csv_table", "html_table"]
+
+_DIGITS = 2
+
+
+@dataclass
+class _Cell:
+    text: str
+    bold: bool = False
+
+
+def _shows_std(summary: Summary) -> bool:
+    return int(summary.settings.get("repeat") or 1) > 1
+
+
+def _best(values: dict[str, float | None], digits: int) -> set[str]:
+    shown = {k: round(v, digits) for k, v in values.items() if v is not None}
+    if not shown:
+        return set()
+    top = max(shown.values())
+    return {k for k, v in shown.items() if v == top}
+
+
+def _row(summary: Summary, pick, digits: int, bold: bool = True, empty: str = "–") -> list[_Cell]:
+    """One row: ``pick(entry) -> (mean, std)`` for each tracker."""
+    values = {t: pick(e) for t, e in summary.trackers.items()}
+    best = _best({t: v[0] for t, v in values.items()}, digits) if bold else set()
+    cells = []
+    for t, (mean, std) in values.items():
+        if mean is None:
+            cells.append(_Cell(empty))
+            continue
+        text = f"{mean:.{digits}f}"
+        if std is not None and _shows_std(summary):
+            text += f" ± {std:.{digits}f}"
+        cells.append(_Cell(text, t in best))
+    return cells
+
+
+def _rows(summary: Summary) -> list[tuple[str, str, list[_Cell]]]:
+    """``(Markdown label, plain label, cells)`` of every row."""
+    rows = []
+    for seq in summary.table_sequences:
+        if seq not in summary.sequences:
+            rows.append((_md(seq), seq, [_Cell("error") for _ in summary.trackers]))
+            continue
+
+        def per_seq(e, seq=seq):
+            s = e["sequences"].get(seq, {})
+            return s.get("avg_overlap"), s.get("avg_overlap_std")
+
+        rows.append((_md(seq), seq, _row(summary, per_seq, _DIGITS, empty="error")))
+    rows.append(("**Average**", "Average", _row(summary, lambda e: (e["avg_overlap"], e["avg_overlap_std"]), _DIGITS)))
+    rows.append(("AUC (success)", "AUC (success)", _row(summary, lambda e: (e["auc"], e["auc_std"]), 3)))
+    pick_prec = lambda e: (e["precision20"], e["precision20_std"])  # noqa: E731
+    rows.append(("Precision (20 px)", "Precision (20 px)", _row(summary, pick_prec, 3)))
+    rows.append(("FPS", "FPS", _row(summary, lambda e: (e["fps"], None), 1, bold=False)))
+    return rows
+
+
+def _md(text: str) -> str:
+    """Text for a Markdown table cell: ``|`` and line breaks would break the row."""
+    return text.replace("\\", "\\\\").replace("|", "\\|").replace("\n", " ")
+
+
+def markdown_table(summary: Summary) -> str:
+    """``table.md``: the table, a note on differing sequence counts, and the errors."""
+    invalid = summary.settings.get("invalid", "otb")
+    lines = [
+        "# Average overlap per sequence (OTB one-pass evaluation)",
+        "",
+        f"Best of each row in **bold** (compared at the {_DIGITS} decimals shown). `error`: no usable "
+        f"result (see below). Invalid ground-truth frames: `{invalid}` rule.",
+    ]
+    if _shows_std(summary):
+        lines.append(f"Cells: mean ± sample standard deviation over {summary.settings['repeat']} repeats.")
+    trackers = list(summary.trackers)
+    lines += [
+        "",
+        "| Sequence | " + " | ".join(trackers) + " |",
+        "| --- | " + " | ".join("---:" for _ in trackers) + " |",
+    ]
+    for label, _, cells in _rows(summary):
+        shown = [f"**{c.text}**" if c.bold else c.text for c in cells]
+        lines.append(f"| {label} | " + " | ".join(shown) + " |")
+    lines.append("")
+    n_seq = {t: e["n_sequences"] for t, e in summary.trackers.items()}
+    if len(set(n_seq.values())) > 1:
+        counts = ", ".join(f"{t} {n}" for t, n in n_seq.items())
+        lines += [f"Averages are over the sequences each tracker has results for: {counts}.", ""]
+    errs = [(t, s, m) for t, e in summary.trackers.items() for s, m in e["errors"].items()]
+    if errs:
+        lines += ["## Errors", ""] + [f"- {t} / {s}: {m}" for t, s, m in errs] + [""]
+    return "\n".join(lines)
+
+
+def csv_table(summary: Summary) -> str:
+    """``table.csv``: full-precision numbers (empty where there is none)."""
+    std = _shows_std(summary)
+    trackers = list(summary.trackers)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["sequence", *[c for t in trackers for c in ([t, f"{t}_std"] if std else [t])]])
+
+    def cells(pairs):
+        return [_csv(v) for mean, sd in pairs for v in ([mean, sd] if std else [mean])]
+
+    for seq in summary.table_sequences:
+        got = [summary.trackers[t]["sequences"].get(seq, {}) for t in trackers]
+        w.writerow([seq, *cells((g.get("avg_overlap"), g.get("avg_overlap_std")) for g in got)])
+    for label, key in (("average", "avg_overlap"), ("auc", "auc"), ("precision20", "precision20")):
+        w.writerow([label, *cells((summary.trackers[t][key], summary.trackers[t][f"{key}_std"]) for t in trackers)])
+    w.writerow(["fps", *cells((summary.trackers[t]["fps"], None) for t in trackers)])
+    return buf.getvalue()
+
+
+def _csv(v) -> str:
+    return "" if v is None else f"{v:.6f}"
+
+
+def html_table(summary: Summary) -> str:
+    """The table as an HTML ``<table>`` (every text escaped)."""
+    e = html.escape
+    out = ["<table>", "<tr><th>Sequence</th>" + "".join(f"<th>{e(t)}</th>" for t in summary.trackers) + "</tr>"]
+    for _, label, cells in _rows(summary):
+        tds = "".join(f"<td><b>{e(c.text)}</b></td>" if c.bold else f"<td>{e(c.text)}</td>" for c in cells)
+        out.append(f"<tr><td>{e(label)}</td>{tds}</tr>")
+    out.append("</table>")
+    return "\n".join(out)
