@@ -51,9 +51,12 @@ def _patches(n: int, rng: np.random.Generator) -> Patches:
     cols = rng.integers(0, 512 - 60, n)
 
     def cut(image, size):
-        return np.stack([cv2.resize(image[r:r + 60, c:c + 60], (size, size),
-                                    interpolation=cv2.INTER_LINEAR)
-                         for r, c in zip(rows, cols)])
+        return np.stack(
+            [
+                cv2.resize(image[r : r + 60, c : c + 60], (size, size), interpolation=cv2.INTER_LINEAR)
+                for r, c in zip(rows, cols)
+            ]
+        )
 
     return Patches(intensity=cut(normalized, 20), gray=cut(normalized, 32), color=cut(color, 32))
 
@@ -74,9 +77,10 @@ def main(argv=None) -> None:
     for name in views:
         fn = VIEW_REGISTRY[name]
         d = fn(patches).shape[1]
-        rows.append((f"view {name} (n={args.n}, d={d})", *_time(lambda: fn(patches), args.repeat)))
-    rows.append((f"extract_views all {len(views)} (n={args.n})",
-                 *_time(lambda: extract_views(patches, views), args.repeat)))
+        rows.append((f"view {name} (n={args.n}, d={d})", *_time(lambda fn=fn: fn(patches), args.repeat)))
+    rows.append(
+        (f"extract_views all {len(views)} (n={args.n})", *_time(lambda: extract_views(patches, views), args.repeat))
+    )
 
     width = max(len(r[0]) for r in rows)
     print(f"{'item':<{width}}  {'wall min':>8}  {'wall med':>8}  {'cpu min':>8}  {'cpu med':>8}  (ms)")

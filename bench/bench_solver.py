@@ -74,17 +74,26 @@ def main() -> None:
         _, _, ref = solve_smtmvt(X, D, lam=lam, gamma=args.gamma, tol=1e-10, max_iter=20000, return_info=True)
         print(f"\nlam={lam}: reference objective {ref.objective:.10g} ({ref.iterations} iterations, tol 1e-10)")
         for tol in tols:
-            t, (_, _, info) = timed(args.repeat, lambda: solve_smtmvt(
-                X, D, lam=lam, gamma=args.gamma, tol=tol, return_info=True))
+            t, (_, _, info) = timed(
+                args.repeat,
+                lambda lam=lam, tol=tol: solve_smtmvt(X, D, lam=lam, gamma=args.gamma, tol=tol, return_info=True),
+            )
             gap = (info.objective - ref.objective) / ref.objective
-            print(f"  admm  tol={tol:g}: {t * 1e3:8.1f} ms  {info.iterations:5d} it  "
-                  f"converged={info.converged}  rel gap {gap:.2e}")
-        t, (_, _, info) = timed(1, lambda: solve_smtmvt(
-            X, D, lam=lam, gamma=args.gamma, method="paper", tol=1e-6, max_iter=args.paper_iter,
-            return_info=True))
+            print(
+                f"  admm  tol={tol:g}: {t * 1e3:8.1f} ms  {info.iterations:5d} it  "
+                f"converged={info.converged}  rel gap {gap:.2e}"
+            )
+        t, (_, _, info) = timed(
+            1,
+            lambda lam=lam: solve_smtmvt(
+                X, D, lam=lam, gamma=args.gamma, method="paper", tol=1e-6, max_iter=args.paper_iter, return_info=True
+            ),
+        )
         gap = (info.objective - ref.objective) / ref.objective
-        print(f"  paper tol=1e-06: {t * 1e3:8.1f} ms  {info.iterations:5d} it  "
-              f"converged={info.converged}  rel gap {gap:.2e}")
+        print(
+            f"  paper tol=1e-06: {t * 1e3:8.1f} ms  {info.iterations:5d} it  "
+            f"converged={info.converged}  rel gap {gap:.2e}"
+        )
 
 
 if __name__ == "__main__":

@@ -51,9 +51,21 @@ from smtmvt.preprocess import prepare_frame
 from smtmvt.solvers import reconstruction_residual
 
 FAIL = 0.5
-FIELDS = ["frame", "overlap", "best_particle_overlap", "gt_rank", "gt_likelihood", "chosen_likelihood",
-          "gt_residual", "chosen_residual", "gt_residual_first", "chosen_residual_first",
-          "replaced", "occluded", "cls"]
+FIELDS = [
+    "frame",
+    "overlap",
+    "best_particle_overlap",
+    "gt_rank",
+    "gt_likelihood",
+    "chosen_likelihood",
+    "gt_residual",
+    "chosen_residual",
+    "gt_residual_first",
+    "chosen_residual_first",
+    "replaced",
+    "occluded",
+    "cls",
+]
 
 
 def residuals_under(tracker: Tracker, frame, boxes, dictionaries) -> np.ndarray:
@@ -123,8 +135,10 @@ def summarize(name: str, rows: list[dict]) -> str:
     counts = {c: failing.count(c) for c in ("model", "drift", "search", "peak")}
     share = ", ".join(f"{c} {counts[c]}" for c in counts)
     repl = sum(r["replaced"] for r in rows)
-    return (f"{name}: mean overlap {ov.mean():.3f}, {len(failing)}/{len(rows)} frames below {FAIL} "
-            f"({share}); first failing frame {first_fail}; {repl} template replacements")
+    return (
+        f"{name}: mean overlap {ov.mean():.3f}, {len(failing)}/{len(rows)} frames below {FAIL} "
+        f"({share}); first failing frame {first_fail}; {repl} template replacements"
+    )
 
 
 def plot(rows: list[dict], path: Path, title: str) -> None:

@@ -9,8 +9,7 @@ from smtmvt.likelihood import observe
 from smtmvt.solvers import reconstruction_residual, solve_smtmvt
 from smtmvt.solvers.bounds import least_squares_residuals, range_basis
 from smtmvt.solvers.prox import singular_value_threshold
-
-from solver_instances import make_instance  # noqa: E402
+from solver_instances import make_instance
 
 
 def _code(X, D):
@@ -57,7 +56,7 @@ def test_svt_per_slice_thresholds_equal_one_call_per_slice():
     tau = np.array([0.0, 0.3, 1.0, 2.5, 10.0])
     out = singular_value_threshold(P, tau)
     for i in range(5):
-        np.testing.assert_allclose(out[i], singular_value_threshold(P[i:i + 1], tau[i])[0], atol=1e-12)
+        np.testing.assert_allclose(out[i], singular_value_threshold(P[i : i + 1], tau[i])[0], atol=1e-12)
 
 
 def test_observe_skips_only_candidates_that_cannot_matter():

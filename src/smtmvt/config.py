@@ -8,6 +8,7 @@ Where the paper is silent the default is named with its source.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any
 
 from .solvers import SOLVERS
 
@@ -203,7 +204,7 @@ class TrackerConfig:
             object.__setattr__(self, "frame_size", tuple(int(s) for s in self.frame_size))
 
     @classmethod
-    def paper(cls, **changes) -> "TrackerConfig":
+    def paper(cls, **changes) -> TrackerConfig:
         """The tracker as the paper describes it, with our documented choices where it is silent.
 
         Paper values: lambda 0.1, gamma 0.25, alpha 30, 400 particles, 10
@@ -216,17 +217,38 @@ class TrackerConfig:
         defaults of :class:`TrackerConfig` may move on without changing it.
         ``changes`` override fields (e.g. ``seed``).
         """
-        base = dict(
-            lam=0.1, gamma=0.25, alpha=30.0, n_particles=400, n_templates=10,
+        base: dict[str, Any] = dict(
+            lam=0.1,
+            gamma=0.25,
+            alpha=30.0,
+            n_particles=400,
+            n_templates=10,
             views=("intensity", "color", "hog", "lbp"),
-            affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0), translation_power=1.0, narrow_fraction=0.0, narrow_scale=0.25, estimate="best", velocity=0.0, feature_size=(32, 32),
-            model="smtmvt", solver="admm", solver_tol=1e-3, solver_max_iter=200,
-            update_angle=60.0, occlusion_fraction=0.25, anchor_cos=-1.0, frame_size=(320, 240), scale_normalize=False, antialias=0.0,
-            hog_plane="tan_triggs", lbp_plane="tan_triggs", color_grid=1, lbp_radius=1.0,
+            affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0),
+            translation_power=1.0,
+            narrow_fraction=0.0,
+            narrow_scale=0.25,
+            estimate="best",
+            velocity=0.0,
+            feature_size=(32, 32),
+            model="smtmvt",
+            solver="admm",
+            solver_tol=1e-3,
+            solver_max_iter=200,
+            update_angle=60.0,
+            occlusion_fraction=0.25,
+            anchor_cos=-1.0,
+            frame_size=(320, 240),
+            scale_normalize=False,
+            antialias=0.0,
+            hog_plane="tan_triggs",
+            lbp_plane="tan_triggs",
+            color_grid=1,
+            lbp_radius=1.0,
         )
         base.update(changes)
         return cls(**base)
 
-    def replace(self, **changes) -> "TrackerConfig":
+    def replace(self, **changes) -> TrackerConfig:
         """A copy with some fields changed."""
         return replace(self, **changes)

@@ -31,10 +31,9 @@ relative change moves ``n p_j / sum`` across an integer.
 
 from __future__ import annotations
 
-import math
+from collections.abc import Callable
 from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
@@ -91,8 +90,7 @@ def _untimed(stage: str):
     yield
 
 
-def observe(X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-3,
-            always=None, timed=None) -> Observation:
+def observe(X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-3, always=None, timed=None) -> Observation:
     """Code the candidates that can matter and compute their likelihoods.
 
     Parameters

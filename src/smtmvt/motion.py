@@ -19,8 +19,9 @@ from .geometry import affine_scale
 __all__ = ["propagate", "resample"]
 
 
-def propagate(params, std, rng: np.random.Generator, shift=None, spread=None,
-              translation_power: float = 1.0) -> np.ndarray:
+def propagate(
+    params, std, rng: np.random.Generator, shift=None, spread=None, translation_power: float = 1.0
+) -> np.ndarray:
     """One step of the random walk.
 
     Parameters

@@ -82,9 +82,7 @@ def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None 
     """
     f = to_unit_range(frame, where)
     if channels is None:
-        gray_input = f.ndim == 2 or (
-            np.array_equal(f[..., 0], f[..., 1]) and np.array_equal(f[..., 0], f[..., 2])
-        )
+        gray_input = f.ndim == 2 or (np.array_equal(f[..., 0], f[..., 1]) and np.array_equal(f[..., 0], f[..., 2]))
         channels = 1 if gray_input else 3
     if channels not in (1, 3):
         raise ValueError(f"{where}: channels must be 1 or 3, got {channels!r}")
@@ -93,8 +91,9 @@ def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None 
         color = gray[:, :, None]
     else:
         color = f if f.ndim == 3 else np.repeat(f[:, :, None], 3, axis=2)
-    return PreparedFrame(normalized=tan_triggs(gray), color=np.ascontiguousarray(color),
-                         gray=np.ascontiguousarray(gray))
+    return PreparedFrame(
+        normalized=tan_triggs(gray), color=np.ascontiguousarray(color), gray=np.ascontiguousarray(gray)
+    )
 
 
 def resize_frame(frame: np.ndarray, size) -> np.ndarray:

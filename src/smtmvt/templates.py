@@ -59,7 +59,7 @@ class TemplateSet:
     """
 
     dictionaries: list
-    weights: np.ndarray = field(default=None)
+    weights: np.ndarray = field(default=None)  # type: ignore[arg-type]  # set in __post_init__
     cooldown: int = 0
 
     def __post_init__(self):
@@ -71,8 +71,17 @@ class TemplateSet:
     def size(self) -> int:
         return self.dictionaries[0].shape[1]
 
-    def update(self, x, c, e, *, update_angle: float, occlusion_fraction: float,
-               intensity_view: int | None = 0, anchor_cos: float = -1.0) -> UpdateDecision:
+    def update(
+        self,
+        x,
+        c,
+        e,
+        *,
+        update_angle: float,
+        occlusion_fraction: float,
+        intensity_view: int | None = 0,
+        anchor_cos: float = -1.0,
+    ) -> UpdateDecision:
         """Apply the rule of the module docstring for the frame's best candidate.
 
         Parameters
@@ -100,7 +109,7 @@ class TemplateSet:
         if intensity_view is not None:
             cos = float(np.dot(x[intensity_view], self.dictionaries[intensity_view][:, j_star]))
         else:
-            cos = np.mean([float(np.dot(xk, Dk[:, j_star])) for xk, Dk in zip(x, self.dictionaries)])
+            cos = float(np.mean([float(np.dot(xk, Dk[:, j_star])) for xk, Dk in zip(x, self.dictionaries)]))
         angle = float(np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))))
 
         occluded = occ > occlusion_fraction
@@ -109,7 +118,9 @@ class TemplateSet:
         replaced = None
         anchored = True
         if anchor_cos > -1.0:
-            anchored = np.mean([float(np.dot(xk, Dk[:, 0])) for xk, Dk in zip(x, self.dictionaries)]) >= anchor_cos
+            anchored = bool(
+                np.mean([float(np.dot(xk, Dk[:, 0])) for xk, Dk in zip(x, self.dictionaries)]) >= anchor_cos
+            )
         if self.cooldown == 0 and angle > update_angle and self.size > 1 and anchored:
             j = 1 + int(np.argmin(self.weights[1:]))
             for xk, Dk in zip(x, self.dictionaries):

@@ -25,6 +25,7 @@ import time
 from collections import defaultdict
 from contextlib import contextmanager
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from threadpoolctl import ThreadpoolController
@@ -94,7 +95,7 @@ class FrameDetail:
     @property
     def probe_likelihood(self) -> np.ndarray:
         """(m,) likelihoods of the probes (comparable with ``observation.likelihood[:n]``)."""
-        return self.observation.likelihood[len(self.particles):]
+        return self.observation.likelihood[len(self.particles) :]
 
 
 class Tracker:
@@ -113,7 +114,7 @@ class Tracker:
         self.config = config.replace(**overrides) if overrides else config
         self._initialized = False
         #: Seconds spent per stage since the last :meth:`init` (for ``bench/``).
-        self.timings = defaultdict(float)
+        self.timings: defaultdict[str, float] = defaultdict(float)
         self._threadpools = ThreadpoolController() if self.config.blas_threads else None
 
     @contextmanager
@@ -163,7 +164,8 @@ class Tracker:
                 intensity=remap_patches(smooth(frame.normalized, cfg.antialias * step_i), *grid(self._intensity_size)),
                 gray=remap_patches(smooth(frame.normalized, cfg.antialias * step_f), X, Y),
                 color=remap_patches(smooth(frame.color, cfg.antialias * step_f), X, Y).reshape(
-                    len(params), fs[0], fs[1], -1),
+                    len(params), fs[0], fs[1], -1
+                ),
                 raw=remap_patches(smooth(frame.gray, cfg.antialias * step_f), X, Y) if self._needs_raw else None,
             )
         with self._timed("features"):
@@ -223,14 +225,15 @@ class Tracker:
         inside = box_inside_fraction(wb, prepared.shape)
         if inside < 0.25:
             raise ValueError(
-                f"init: box {tuple(b)} is mostly outside the {shape[1]}x{shape[0]} image "
-                f"({inside:.0%} inside)"
+                f"init: box {tuple(b)} is mostly outside the {shape[1]}x{shape[0]} image ({inside:.0%} inside)"
             )
         self.timings = defaultdict(float)
         self._intensity_size = intensity_template_size(wb[2], wb[3])  # in the working frame, as the paper
-        self._view_options = {"color": {"grid": cfg.color_grid},
-                              "hog": {"plane": cfg.hog_plane},
-                              "lbp": {"radius": cfg.lbp_radius, "plane": cfg.lbp_plane}}
+        self._view_options: dict[str, dict[str, Any]] = {
+            "color": {"grid": cfg.color_grid},
+            "hog": {"plane": cfg.hog_plane},
+            "lbp": {"radius": cfg.lbp_radius, "plane": cfg.lbp_plane},
+        }
         self._needs_raw = "gray" in (cfg.hog_plane, cfg.lbp_plane)
         self._rng = np.random.default_rng(cfg.seed)
         self._state = box_to_affine(wb)
@@ -278,7 +281,7 @@ class Tracker:
         """0-based boxes of the working frame -> of the input frame."""
         return np.asarray(boxes, dtype=np.float64) / np.tile(self._scale, 2)
 
-    def update_detailed(self, frame: np.ndarray, probes=None) -> tuple["TrackResult", "FrameDetail"]:
+    def update_detailed(self, frame: np.ndarray, probes=None) -> tuple[TrackResult, FrameDetail]:
         """:meth:`update`, also returning what was computed (:class:`FrameDetail`).
 
         ``probes`` : optional (m, 4) 0-based boxes ``(x, y, w, h)`` scored as extra
@@ -303,8 +306,7 @@ class Tracker:
         with self._timed("motion"):
             particles = resample(self._particles, self._weights, cfg.n_particles)
             shift = cfg.velocity * self._velocity if cfg.velocity else None
-            particles = propagate(particles, cfg.affine_std, self._rng, shift, self._spread,
-                                  cfg.translation_power)
+            particles = propagate(particles, cfg.affine_std, self._rng, shift, self._spread, cfg.translation_power)
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
@@ -313,9 +315,16 @@ class Tracker:
         with self._timed("motion"):
             valid = inside_fraction(states, work_shape) >= 0.5
         is_probe = np.arange(len(states)) >= n
-        obs = observe(X, self._templates.dictionaries, self._code, cfg.alpha,
-                      valid=valid & ~is_probe, eps=min(cfg.prune_eps, 0.5 / n), always=is_probe,
-                      timed=self._timed)
+        obs = observe(
+            X,
+            self._templates.dictionaries,
+            self._code,
+            cfg.alpha,
+            valid=valid & ~is_probe,
+            eps=min(cfg.prune_eps, 0.5 / n),
+            always=is_probe,
+            timed=self._timed,
+        )
         p = obs.likelihood[:n]
 
         if not np.any(p > 0):
@@ -328,9 +337,13 @@ class Tracker:
         best = int(np.argmax(p))
         with self._timed("update"):
             decision = self._templates.update(
-                [Xk[:, best] for Xk in X], obs.C[:, :, best], [Ek[:, best] for Ek in obs.E],
-                update_angle=cfg.update_angle, occlusion_fraction=cfg.occlusion_fraction,
-                intensity_view=self._intensity_index, anchor_cos=cfg.anchor_cos,
+                [Xk[:, best] for Xk in X],
+                obs.C[:, :, best],
+                [Ek[:, best] for Ek in obs.E],
+                update_angle=cfg.update_angle,
+                occlusion_fraction=cfg.occlusion_fraction,
+                intensity_view=self._intensity_index,
+                anchor_cos=cfg.anchor_cos,
             )
         if cfg.estimate == "mean":
             w = p / p.sum()
@@ -356,8 +369,9 @@ class Tracker:
         """The observation model's solver on candidate views ``X`` (a subset of columns)."""
         cfg = self.config
         if cfg.model == "smtmvt":
-            return solve_smtmvt(X, D, lam=cfg.lam, gamma=cfg.gamma, method=cfg.solver,
-                                tol=cfg.solver_tol, max_iter=cfg.solver_max_iter)
+            return solve_smtmvt(
+                X, D, lam=cfg.lam, gamma=cfg.gamma, method=cfg.solver, tol=cfg.solver_tol, max_iter=cfg.solver_max_iter
+            )
         return SOLVERS[cfg.model](X, D, tol=cfg.solver_tol, max_iter=cfg.solver_max_iter)
 
     @property

@@ -29,8 +29,6 @@ Colors are expected in [0, 1]; values outside are clipped.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
@@ -146,6 +144,9 @@ def color_view(patches, grid: int = 1) -> np.ndarray:
         raise ValueError(f"color grid must be in [1, {min(h, w)}] for {h}x{w} patches, got {grid}")
     rows = (np.arange(grid + 1) * h) // grid
     cols = (np.arange(grid + 1) * w) // grid
-    cells = [color_histograms(colors[:, rows[i]:rows[i + 1], cols[j]:cols[j + 1]], COLOR_BINS)
-             for i in range(grid) for j in range(grid)]
+    cells = [
+        color_histograms(colors[:, rows[i] : rows[i + 1], cols[j] : cols[j + 1]], COLOR_BINS)
+        for i in range(grid)
+        for j in range(grid)
+    ]
     return np.concatenate(cells, axis=1)

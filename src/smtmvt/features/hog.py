@@ -32,18 +32,29 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["hog_descriptors", "hog_view", "hog_dim", "orientation_bins", "bin_edges",
-           "HOG_ORIENTATIONS", "HOG_CELL", "HOG_BLOCK"]
+__all__ = [
+    "hog_descriptors",
+    "hog_view",
+    "hog_dim",
+    "orientation_bins",
+    "bin_edges",
+    "HOG_ORIENTATIONS",
+    "HOG_CELL",
+    "HOG_BLOCK",
+]
 
 HOG_ORIENTATIONS = 9
-HOG_CELL = (8, 8)   # pixels per cell (rows, cols)
+HOG_CELL = (8, 8)  # pixels per cell (rows, cols)
 HOG_BLOCK = (2, 2)  # cells per block (rows, cols)
-_EPS = 1e-5         # skimage's block-normalization epsilon
+_EPS = 1e-5  # skimage's block-normalization epsilon
 
 
-def hog_dim(shape: tuple[int, int], orientations: int = HOG_ORIENTATIONS,
-            pixels_per_cell: tuple[int, int] = HOG_CELL,
-            cells_per_block: tuple[int, int] = HOG_BLOCK) -> int:
+def hog_dim(
+    shape: tuple[int, int],
+    orientations: int = HOG_ORIENTATIONS,
+    pixels_per_cell: tuple[int, int] = HOG_CELL,
+    cells_per_block: tuple[int, int] = HOG_BLOCK,
+) -> int:
     """Length of the HOG descriptor of a ``(H, W)`` patch (324 for 32x32)."""
     ncr, ncc = shape[0] // pixels_per_cell[0], shape[1] // pixels_per_cell[1]
     nbr, nbc = ncr - cells_per_block[0] + 1, ncc - cells_per_block[1] + 1
@@ -55,8 +66,7 @@ _NEAR_EDGE = 1e-9  # relative distance to a bin edge below which a pixel is binn
 
 def bin_edges(orientations: int) -> np.ndarray:
     """skimage's bin edges in degrees, ``180 i / O`` rounded to float32, as float64 ``(O + 1,)``."""
-    return np.array([np.float32(180.0 / orientations * i) for i in range(orientations + 1)],
-                    dtype=np.float64)
+    return np.array([np.float32(180.0 / orientations * i) for i in range(orientations + 1)], dtype=np.float64)
 
 
 def _exact_bins(g_row: np.ndarray, g_col: np.ndarray, orientations: int) -> np.ndarray:
@@ -123,7 +133,8 @@ def orientation_bins(g_row: np.ndarray, g_col: np.ndarray, orientations: int) ->
     g_row = np.ascontiguousarray(g_row).ravel()
     g_col = np.ascontiguousarray(g_col).ravel()
     out = np.empty(g_row.size, dtype=np.intp)
-    _bins_kernel(g_row, g_col, *_edge_trig(orientations), out)
+    cos_e, sin_e = _edge_trig(orientations)
+    _bins_kernel(g_row, g_col, cos_e, sin_e, out)
     near = np.flatnonzero(out < 0)
     out[near] = _exact_bins(g_row[near], g_col[near], orientations)
     return out.reshape(shape)
@@ -188,14 +199,14 @@ def _cells_kernel(images, cell_rows, cell_cols, cos_e, sin_e, out, near):  # pra
     return m
 
 
-def _cell_histograms(images: np.ndarray, orientations: int,
-                     pixels_per_cell: tuple[int, int]) -> np.ndarray:
+def _cell_histograms(images: np.ndarray, orientations: int, pixels_per_cell: tuple[int, int]) -> np.ndarray:
     """(n, H, W) float -> (n, n_cells_row, n_cells_col, orientations) float64."""
     n, h, w = images.shape
     cr, cc = pixels_per_cell
     hist = np.zeros((n, h // cr, w // cc, orientations))
     near = np.empty((n * (h // cr) * cr * (w // cc) * cc, 5))
-    m = _cells_kernel(np.ascontiguousarray(images), cr, cc, *_edge_trig(orientations), hist, near)
+    cos_e, sin_e = _edge_trig(orientations)
+    m = _cells_kernel(np.ascontiguousarray(images), cr, cc, cos_e, sin_e, hist, near)
     if m:  # the pixels binned by atan2 (rare on real images)
         k, r, c, g_row, g_col = near[:m].T
         bins = _exact_bins(g_row, g_col, orientations)
@@ -205,9 +216,12 @@ def _cell_histograms(images: np.ndarray, orientations: int,
     return hist / (cr * cc)
 
 
-def hog_descriptors(images: np.ndarray, orientations: int = HOG_ORIENTATIONS,
-                    pixels_per_cell: tuple[int, int] = HOG_CELL,
-                    cells_per_block: tuple[int, int] = HOG_BLOCK) -> np.ndarray:
+def hog_descriptors(
+    images: np.ndarray,
+    orientations: int = HOG_ORIENTATIONS,
+    pixels_per_cell: tuple[int, int] = HOG_CELL,
+    cells_per_block: tuple[int, int] = HOG_BLOCK,
+) -> np.ndarray:
     """HOG descriptors (L2-Hys) of a stack of gray patches.
 
     Parameters
@@ -250,11 +264,11 @@ def hog_descriptors(images: np.ndarray, orientations: int = HOG_ORIENTATIONS,
     blocks = np.empty((n, nbr, nbc, br, bc, orientations), dtype=np.float64)
     for i in range(br):
         for j in range(bc):
-            blocks[:, :, :, i, j, :] = hist[:, i:i + nbr, j:j + nbc, :]
+            blocks[:, :, :, i, j, :] = hist[:, i : i + nbr, j : j + nbc, :]
     blocks = blocks.reshape(n, nbr, nbc, -1)
-    norm = np.sqrt(np.sum(blocks ** 2, axis=-1, keepdims=True) + _EPS ** 2)
+    norm = np.sqrt(np.sum(blocks**2, axis=-1, keepdims=True) + _EPS**2)
     blocks = np.minimum(blocks / norm, 0.2)
-    norm = np.sqrt(np.sum(blocks ** 2, axis=-1, keepdims=True) + _EPS ** 2)
+    norm = np.sqrt(np.sum(blocks**2, axis=-1, keepdims=True) + _EPS**2)
     blocks = blocks / norm
     return blocks.reshape(n, -1).astype(np.float32)
 

@@ -189,9 +189,9 @@ def lbp_histograms(codes: np.ndarray, n_codes: int, grid: int = LBP_GRID) -> np.
     cell_col = _cell_index(w, grid)
     cell = cell_row[:, None] * grid + cell_col[None, :]
     idx = (np.arange(n)[:, None, None] * (grid * grid) + cell) * n_codes + codes
-    hist = np.bincount(idx.ravel(), minlength=n * grid * grid * n_codes)
-    counts = np.bincount(cell.ravel(), minlength=grid * grid)  # pixels per cell
-    hist = hist.reshape(n, grid * grid, n_codes) / counts[:, None]
+    code_counts = np.bincount(idx.ravel(), minlength=n * grid * grid * n_codes)
+    pixels = np.bincount(cell.ravel(), minlength=grid * grid)  # pixels per cell
+    hist = code_counts.reshape(n, grid * grid, n_codes) / pixels[:, None]
     return hist.reshape(n, -1).astype(np.float32)
 
 

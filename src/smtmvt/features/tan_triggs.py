@@ -69,9 +69,7 @@ def to_unit_float(image: np.ndarray) -> np.ndarray:
         return image / 65535.0
     if np.issubdtype(image.dtype, np.floating):
         return np.maximum(np.ascontiguousarray(image, dtype=np.float64), 0.0)
-    raise TypeError(
-        f"unsupported image dtype {image.dtype}; expected uint8, uint16 or a float type"
-    )
+    raise TypeError(f"unsupported image dtype {image.dtype}; expected uint8, uint16 or a float type")
 
 
 def _gaussian(image: np.ndarray, sigma: float) -> np.ndarray:
@@ -81,13 +79,15 @@ def _gaussian(image: np.ndarray, sigma: float) -> np.ndarray:
     radius = int(_TRUNCATE * float(sigma) + 0.5)
     ksize = 2 * radius + 1
     return cv2.GaussianBlur(
-        image, (ksize, ksize), sigmaX=float(sigma), sigmaY=float(sigma),
+        image,
+        (ksize, ksize),
+        sigmaX=float(sigma),
+        sigmaY=float(sigma),
         borderType=cv2.BORDER_REFLECT,
     )
 
 
-def difference_of_gaussians(image: np.ndarray, sigma0: float = 1.0,
-                            sigma1: float = 2.0) -> np.ndarray:
+def difference_of_gaussians(image: np.ndarray, sigma0: float = 1.0, sigma1: float = 2.0) -> np.ndarray:
     """Band-pass a float image: ``G(sigma0) * I - G(sigma1) * I``.
 
     Parameters
@@ -131,8 +131,14 @@ def _equalize(image: np.ndarray, alpha: float, tau: float | None) -> np.ndarray:
     return image / scale
 
 
-def tan_triggs(image: np.ndarray, gamma: float = 0.2, sigma0: float = 1.0,
-               sigma1: float = 2.0, alpha: float = 0.1, tau: float = 10.0) -> np.ndarray:
+def tan_triggs(
+    image: np.ndarray,
+    gamma: float = 0.2,
+    sigma0: float = 1.0,
+    sigma1: float = 2.0,
+    alpha: float = 0.1,
+    tau: float = 10.0,
+) -> np.ndarray:
     """Tan-Triggs illumination normalization of a whole gray frame.
 
     Parameters

@@ -15,8 +15,8 @@ filled with the four default views at import and extended only through
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -94,18 +94,14 @@ class Patches:
                 f"intensity {intensity.shape[0]}, gray {gray.shape[0]}, color {color.shape[0]}"
             )
         if min(intensity.shape[1:]) < 1 or min(gray.shape[1:]) < 1:
-            raise ValueError(
-                f"empty patches: intensity {intensity.shape}, gray {gray.shape}"
-            )
+            raise ValueError(f"empty patches: intensity {intensity.shape}, gray {gray.shape}")
         if color.shape[1:3] != gray.shape[1:3]:
             raise ValueError(
                 f"Patches.color is {color.shape[1]}x{color.shape[2]} px but Patches.gray is "
                 f"{gray.shape[1]}x{gray.shape[2]}; both are warped at the feature size"
             )
         if color.shape[3] not in (1, 3):
-            raise ValueError(
-                f"Patches.color must have C = 3 (RGB) or C = 1 (gray) channels, got {color.shape[3]}"
-            )
+            raise ValueError(f"Patches.color must have C = 3 (RGB) or C = 1 (gray) channels, got {color.shape[3]}")
         object.__setattr__(self, "intensity", intensity)
         object.__setattr__(self, "gray", gray)
         object.__setattr__(self, "color", color)
@@ -115,7 +111,7 @@ class Patches:
         """Number of patches."""
         return self.intensity.shape[0]
 
-    def subset(self, index) -> "Patches":
+    def subset(self, index) -> Patches:
         """The patches selected by ``index`` (an int, slice, mask or index array)."""
         index = np.atleast_1d(np.arange(self.n)[index])
         raw = None if self.raw is None else self.raw[index]
@@ -201,8 +197,9 @@ def normalize_columns(V: np.ndarray) -> np.ndarray:
     return X.astype(np.float32)
 
 
-def extract_views(patches: Patches, names: Sequence[str] = DEFAULT_VIEWS,
-                  options: Mapping[str, Mapping] | None = None) -> list[np.ndarray]:
+def extract_views(
+    patches: Patches, names: Sequence[str] = DEFAULT_VIEWS, options: Mapping[str, Mapping] | None = None
+) -> list[np.ndarray]:
     """Feature matrices of the patches, one per view.
 
     Parameters
@@ -227,16 +224,12 @@ def extract_views(patches: Patches, names: Sequence[str] = DEFAULT_VIEWS,
         names = (names,)
     unknown = [name for name in names if name not in VIEW_REGISTRY]
     if unknown:
-        raise ValueError(
-            f"unknown view(s) {unknown}; available views: {', '.join(available_views())}"
-        )
+        raise ValueError(f"unknown view(s) {unknown}; available views: {', '.join(available_views())}")
     options = options or {}
     out = []
     for name in names:
         F = np.asarray(VIEW_REGISTRY[name](patches, **options.get(name, {})))
         if F.ndim != 2 or F.shape[0] != patches.n:
-            raise ValueError(
-                f"view {name!r} returned shape {F.shape}, expected ({patches.n}, d)"
-            )
+            raise ValueError(f"view {name!r} returned shape {F.shape}, expected ({patches.n}, d)")
         out.append(np.ascontiguousarray(normalize_columns(F.T)))
     return out

@@ -110,6 +110,7 @@ def admm_blocks(X, D, loss_prox, block_proxes, tol, max_iter, rho=2.0, beta=0.5)
             UR = [u / factor for u in UR]
             DtUR = DtUR / factor
             n_adapt += 1
-    info = dict(iterations=it, converged=converged, primal_residual=float(r_pri),
-                dual_residual=float(r_dual), rho=float(rho))
+    info = dict(
+        iterations=it, converged=converged, primal_residual=float(r_pri), dual_residual=float(r_dual), rho=float(rho)
+    )
     return Z, info

@@ -118,10 +118,12 @@ def solve_l1t(X, D, lam: float = 0.01, tol: float = 1e-6, max_iter: int = 1000, 
     _check_run(tol, max_iter)
     lam = float(lam)
     (C,), info = admm_blocks(
-        X, D,
+        X,
+        D,
         loss_prox=lambda V, rho: huber_prox(V, lam, rho),
         block_proxes=[lambda V, t: nonneg_shrink(V, lam * t)],
-        tol=tol, max_iter=int(max_iter),
+        tol=tol,
+        max_iter=int(max_iter),
     )
     E = [soft_threshold(r, lam / 2.0) for r in _residuals(X, D, C)]
     obj = l1t_objective(X, D, C, E, lam) if return_info else None
@@ -151,10 +153,12 @@ def solve_mtt(X, D, lam: float = 0.01, tol: float = 1e-6, max_iter: int = 1000, 
     _check_run(tol, max_iter)
     lam = float(lam)
     (C,), info = admm_blocks(
-        X, D,
+        X,
+        D,
         loss_prox=lambda V, rho: group_huber_prox(V, lam, rho, axis=1),
         block_proxes=[lambda V, t: group_shrink(V, lam * t, axis=2)],
-        tol=tol, max_iter=int(max_iter),
+        tol=tol,
+        max_iter=int(max_iter),
     )
     E = [group_shrink(r, lam / 2.0, axis=1) for r in _residuals(X, D, C)]
     obj = mtt_objective(X, D, C, E, lam) if return_info else None
@@ -185,19 +189,24 @@ def _solve_mtmvt(X, D, lam_p, lam_q, loss, tol, max_iter, return_info):
     _check_run(tol, max_iter)
     lam_p, lam_q = float(lam_p), float(lam_q)
     if loss == "ls":
+
         def loss_prox(V, rho):  # argmin ||R||^2 + rho/2 ||R - V||^2
             return V * (rho / (2.0 + rho))
     else:
+
         def loss_prox(V, rho):  # argmin ||R||_1 + rho/2 ||R - V||^2
             return soft_threshold(V, 1.0 / rho)
+
     (P, Q), info = admm_blocks(
-        X, D,
+        X,
+        D,
         loss_prox=loss_prox,
         block_proxes=[
             lambda V, t: group_shrink(V, lam_p * t, axis=(0, 2)),
             lambda V, t: group_shrink(V, lam_q * t, axis=(0, 1)),
         ],
-        tol=tol, max_iter=int(max_iter),
+        tol=tol,
+        max_iter=int(max_iter),
     )
     C = P + Q
     E = [np.zeros_like(x) for x in X]
@@ -205,8 +214,9 @@ def _solve_mtmvt(X, D, lam_p, lam_q, loss, tol, max_iter, return_info):
     return _finish(f"mtmvt-{loss}", C, E, info, obj, return_info, parts={"P": P, "Q": Q})
 
 
-def solve_mtmvt_ls(X, D, lam_p: float = 0.1, lam_q: float = 0.5, tol: float = 1e-6, max_iter: int = 1000,
-                   return_info: bool = False):
+def solve_mtmvt_ls(
+    X, D, lam_p: float = 0.1, lam_q: float = 0.5, tol: float = 1e-6, max_iter: int = 1000, return_info: bool = False
+):
     """MTMVT-LS observation model (Hong et al. 2013); see the module docstring.
 
     Returns ``C = P + Q`` (K, N, n) and ``E`` = zeros (list of (d_k, n)),
@@ -216,8 +226,9 @@ def solve_mtmvt_ls(X, D, lam_p: float = 0.1, lam_q: float = 0.5, tol: float = 1e
     return _solve_mtmvt(X, D, lam_p, lam_q, "ls", tol, max_iter, return_info)
 
 
-def solve_mtmvt_lad(X, D, lam_p: float = 0.1, lam_q: float = 0.5, tol: float = 1e-6, max_iter: int = 1000,
-                    return_info: bool = False):
+def solve_mtmvt_lad(
+    X, D, lam_p: float = 0.1, lam_q: float = 0.5, tol: float = 1e-6, max_iter: int = 1000, return_info: bool = False
+):
     """MTMVT-LAD observation model (Mei et al. 2015), exact LAD; see the module docstring.
 
     Returns ``C = P + Q`` (K, N, n) and ``E`` = zeros (list of (d_k, n)),

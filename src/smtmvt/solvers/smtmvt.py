@@ -97,8 +97,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._inputs import check_params, check_views, check_warm_start
 from ._admm_rules import ABS_FLOOR, penalty_factor, tolerances
+from ._inputs import check_params, check_views, check_warm_start
 from .prox import nuclear_norms, singular_value_threshold, soft_threshold
 
 __all__ = [
@@ -403,11 +403,14 @@ def _solve_admm(X, D, lam, gamma, tol, max_iter, C0, E0, rho=2.0, beta=0.5):
             DtUR /= factor
             n_adapt += factor != 1.0
 
-    info = dict(iterations=int(iterations.max(initial=0)), converged=bool(converged.all()),
-                primal_residual=float(np.sqrt(np.sum(r_pri_out**2))),
-                dual_residual=float(np.sqrt(np.sum(r_dual_out**2))),
-                rho=float(np.median(rho_out)) if n else float("nan"),
-                mean_iterations=float(iterations.mean()) if n else 0.0)
+    info = dict(
+        iterations=int(iterations.max(initial=0)),
+        converged=bool(converged.all()),
+        primal_residual=float(np.sqrt(np.sum(r_pri_out**2))),
+        dual_residual=float(np.sqrt(np.sum(r_dual_out**2))),
+        rho=float(np.median(rho_out)) if n else float("nan"),
+        mean_iterations=float(iterations.mean()) if n else 0.0,
+    )
     return C_out, info
 
 
@@ -435,7 +438,7 @@ def _solve_paper(X, D, lam, gamma, tol, max_iter, C0, E0):
     change = np.inf
     converged = False
     it = 0
-    for it in range(1, max_iter + 1):
+    for it in range(1, max_iter + 1):  # noqa: B007 - `it` is reported after the loop
         R = [X[k] - D[k] @ C[k] - E[k] for k in range(K)]
         gC = np.stack([-2.0 * (D[k].T @ R[k]) for k in range(K)]) + gamma
         if lam > 0:
