@@ -142,3 +142,24 @@ def test_mean_estimate_is_the_likelihood_weighted_mean_state(demo):
         mean_state = (p / p.sum()) @ d.particles
         np.testing.assert_allclose(r.box, affine_to_box(mean_state), rtol=1e-12)
         assert np.abs(np.asarray(r.box) - d.boxes[d.best]).max() > 0.01  # not the best particle
+
+
+def test_nonnegative_bound_equals_scipy_nnls_and_bounds_every_nonnegative_code():
+    from scipy.optimize import nnls
+
+    from smtmvt.solvers.bounds import NNLS_MARGIN, nonnegative_residuals
+
+    X, D = make_instance(35, K=3, N=6, n=9)
+    bound = nonnegative_residuals(X, D)
+    ref = np.zeros(9)
+    for Xk, Dk in zip(X, D):
+        for i in range(9):
+            ref[i] += nnls(Dk, Xk[:, i])[1] ** 2
+    np.testing.assert_allclose(bound, ref - 3 * NNLS_MARGIN, rtol=0, atol=1e-12)
+    assert np.all(bound >= least_squares_residuals(X, D))
+    assert np.any(bound > least_squares_residuals(X, D) + 1e-3)  # strictly tighter here
+    C, _ = _code(X, D)
+    assert np.all(bound <= reconstruction_residual(X, D, C))
+    rng = np.random.default_rng(1)
+    for _ in range(20):
+        assert np.all(bound <= reconstruction_residual(X, D, np.abs(rng.standard_normal(C.shape))))

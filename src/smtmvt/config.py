@@ -95,7 +95,8 @@ class TrackerConfig:
         Fraction of the intensity template flagged by E above which the frame
         is treated as occluded and no template is replaced (L1-APG: 0.25).
     prune_eps : float
-        Bounded coding (:func:`smtmvt.likelihood.observe`): the candidates left
+        Bounded coding (:func:`smtmvt.likelihood.observe`, SMTMVT's model only:
+        the comparison models code every candidate): the candidates left
         uncoded have likelihood bounds summing to at most ``prune_eps`` times
         the best candidate's likelihood. The chosen box is the same as when
         coding all of them; the sum of the resampling weights changes by a

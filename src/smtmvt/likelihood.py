@@ -9,9 +9,10 @@ Coding all n candidates with the exact solver is the most expensive stage of
 a frame, yet most candidates end with likelihoods many orders of magnitude
 below the best one and cannot change anything. Following L1-APG's bounded
 particle resampling (Mei et al., CVPR 2011), each candidate's likelihood is
-bounded from above by ``u_i = exp(-alpha b_i)``, ``b_i`` its least-squares
-residual (:func:`smtmvt.solvers.bounds.least_squares_residuals`, a lower bound
-on its residual under any model). The rule:
+bounded from above by ``u_i = exp(-alpha b_i)``, ``b_i`` its nonnegative
+least-squares residual (:func:`smtmvt.solvers.bounds.nonnegative_residuals`, a
+lower bound on its residual under any model with nonnegative codes, as
+SMTMVT's; L1-APG used the plain least-squares one). The rule:
 
 1. code the ``FIRST_PASS`` (16) valid candidates of smallest bound; let
    ``p*`` be the best likelihood found;
@@ -37,7 +38,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .solvers.bounds import least_squares_residuals
+from .solvers.bounds import least_squares_residuals, nonnegative_residuals
 from .solvers.smtmvt import reconstruction_residual
 
 __all__ = ["likelihoods", "Observation", "observe", "FIRST_PASS"]
@@ -71,7 +72,9 @@ class Observation:
     likelihood : (n,) float64, ``exp(-alpha * residual)``; 0 for invalid and
         for skipped candidates.
     residual : (n,) float64 reconstruction residual; NaN where not coded.
-    bound : (n,) float64 least-squares lower bound of the residual.
+    bound : (n,) float64 lower bound of the residual: nonnegative least squares
+        when ``eps > 0`` (the coded model must have nonnegative codes), plain
+        least squares when every candidate is coded.
     coded : (n,) bool, the candidates that were coded.
     C : (K, N, n) float64 codes (zero where not coded).
     E : list of K (d_k, n) float64 outliers (zero where not coded).
@@ -103,7 +106,8 @@ def observe(X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-3, a
         and are not coded); all when None.
     eps : the skipped candidates' likelihood bounds sum to at most ``eps``
         times the best likelihood (see the module docstring); 0 codes every
-        valid candidate.
+        valid candidate. With ``eps > 0`` the model must have nonnegative codes
+        (the bound) and code each candidate independently of the others.
     always : (n,) bool, candidates coded whatever their bound, e.g. probes
         scored for diagnosis; their likelihood is reported (valid or not) but
         they take no part in the rule (pass them with ``valid`` False so that
@@ -118,7 +122,7 @@ def observe(X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-3, a
     valid = np.ones(n, dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
     always = np.zeros(n, dtype=bool) if always is None else np.asarray(always, dtype=bool)
     with timed("likelihood"):
-        bound = least_squares_residuals(X, D)
+        bound = nonnegative_residuals(X, D) if eps > 0 else least_squares_residuals(X, D)
     coded = np.zeros(n, dtype=bool)
     C = np.zeros((K, N, n))
     E = [np.zeros((Xk.shape[0], n)) for Xk in X]

@@ -36,7 +36,7 @@ from .geometry import affine_scale, affine_to_box, box_inside_fraction, box_to_a
 from .likelihood import Observation, observe
 from .motion import propagate, resample
 from .preprocess import PreparedFrame, prepare_frame, resize_frame, smooth, to_unit_range
-from .solvers import SOLVERS, solve_smtmvt
+from .solvers import BOUNDED_CODING, SOLVERS, solve_smtmvt
 from .templates import TemplateSet
 from .warp import inside_fraction, remap_patches, sampling_grid
 
@@ -364,6 +364,12 @@ class Tracker:
             frame_index=self._frame_index,
         )
         return result, FrameDetail(particles, obs, best, probe_boxes, self._scale)
+
+    def _prune_eps(self, n: int) -> float:
+        """Bounded coding's ``eps`` for n particles: 0 (code all) for models it is not exact for."""
+        if self.config.model not in BOUNDED_CODING:
+            return 0.0
+        return min(self.config.prune_eps, 0.5 / n)
 
     def _code(self, X, D):
         """The observation model's solver on candidate views ``X`` (a subset of columns)."""

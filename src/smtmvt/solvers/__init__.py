@@ -25,6 +25,13 @@ from .smtmvt import (
     solve_smtmvt,
 )
 
+#: Models whose problem separates over candidates, each solved by its own ADMM
+#: (so a candidate's code does not depend on the batch), with nonnegative codes:
+#: bounded coding (:func:`smtmvt.likelihood.observe`) is exact for them. The
+#: comparison models couple the candidates (MTT, MTMVT) or share one stopping
+#: rule over the batch (L1T on the shared engine), so they code every candidate.
+BOUNDED_CODING = frozenset({"smtmvt"})
+
 SOLVERS = {
     "smtmvt": solve_smtmvt,
     "l1t": solve_l1t,
@@ -34,6 +41,7 @@ SOLVERS = {
 }
 
 __all__ = [
+    "BOUNDED_CODING",
     "METHODS",
     "SOLVERS",
     "SolverInfo",
