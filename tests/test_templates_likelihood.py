@@ -76,3 +76,55 @@ def test_anchor_check_blocks_a_replacement_far_from_the_first_template():
     ts = _templates()
     allowed = ts.update([far, far], c, e, update_angle=30, occlusion_fraction=0.25, anchor_cos=cos0 - 0.01)
     assert allowed.replaced is not None
+
+
+def test_weights_after_an_update_computed_by_hand():
+    """L1T: w <- w exp(mean_k c_k), normalized; the replaced template gets the median weight."""
+    ts = _templates()
+    w0 = np.array([0.1, 0.2, 0.3, 0.4])
+    ts.weights = w0.copy()
+    c = np.array([[0.2, 0.0, 0.6, 0.1], [0.4, 0.2, 0.2, 0.1]])  # views x templates
+    x = [ts.dictionaries[0][:, 2].copy(), ts.dictionaries[1][:, 2].copy()]  # equal to template 2: no replacement
+    e = [np.zeros(6), np.zeros(6)]
+    d = ts.update(x, c, e, update_angle=30, occlusion_fraction=0.25)
+    w = w0 * np.exp(c.mean(axis=0))
+    w /= w.sum()
+    assert d.replaced is None
+    np.testing.assert_allclose(ts.weights, w, rtol=1e-12)
+
+    # now a candidate far from every template: the lightest of templates 1..3 is replaced
+    far = _unit(np.r_[1.0, -1.0, 1.0, -1.0, 1.0, -1.0]).astype(np.float32)
+    d = ts.update([far, far], c, e, update_angle=30, occlusion_fraction=0.25)
+    w = w * np.exp(c.mean(axis=0))
+    w /= w.sum()
+    j = 1 + int(np.argmin(w[1:]))
+    assert d.replaced == j
+    w[j] = np.median(w)
+    np.testing.assert_allclose(ts.weights, w / w.sum(), rtol=1e-12)
+
+
+def test_the_template_compared_is_the_largest_coefficient_not_the_heaviest():
+    ts = _templates()
+    ts.weights = np.array([0.1, 0.6, 0.2, 0.1])  # template 1 is the heaviest
+    c = np.zeros((2, 4))
+    c[:, 2] = 0.9  # template 2 has the largest coefficient
+    x = [ts.dictionaries[0][:, 2].copy(), ts.dictionaries[1][:, 2].copy()]
+    d = ts.update(x, c, [np.zeros(6), np.zeros(6)], update_angle=30, occlusion_fraction=0.25)
+    assert d.angle == pytest.approx(0.0, abs=1e-3)  # measured against template 2, identical
+    assert d.replaced is None
+    # against the heaviest template the angle would exceed the threshold
+    cos1 = float(np.dot(x[0], ts.dictionaries[0][:, 1]))
+    assert np.degrees(np.arccos(np.clip(cos1, -1, 1))) > 30
+
+
+def test_an_occlusion_fraction_equal_to_the_threshold_is_not_an_occlusion():
+    ts = _templates(d=8)
+    far = _unit(np.r_[1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -1.0]).astype(np.float32)
+    c = np.zeros((2, 4))
+    c[:, 1] = 0.2
+    at_threshold = [np.r_[1.0, 1.0, 0, 0, 0, 0, 0, 0], np.zeros(8)]  # exactly 2/8 = 0.25
+    d = ts.update([far, far], c, at_threshold, update_angle=30, occlusion_fraction=0.25)
+    assert d.occlusion == 0.25 and not d.occluded and d.replaced is not None
+    above = [np.r_[1.0, 1.0, 1.0, 0, 0, 0, 0, 0], np.zeros(8)]
+    d = _templates(d=8).update([far, far], c, above, update_angle=30, occlusion_fraction=0.25)
+    assert d.occluded and d.replaced is None

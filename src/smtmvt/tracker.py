@@ -79,6 +79,8 @@ class FrameDetail:
     best : index of the chosen particle, or None when no candidate was valid.
     probe_boxes : (m, 4) float64 probe boxes, 0-based pixels of the input frame.
     scale : (2,) float64 working-frame pixels per input pixel (x, y).
+    best_views : the chosen particle's K views, ``(d_k,)`` float32 each (None
+        when no candidate was valid).
     """
 
     particles: np.ndarray
@@ -86,6 +88,7 @@ class FrameDetail:
     best: int | None
     probe_boxes: np.ndarray
     scale: np.ndarray
+    best_views: list | None = None
 
     @property
     def boxes(self) -> np.ndarray:
@@ -363,7 +366,7 @@ class Tracker:
             template_replaced=decision.replaced,
             frame_index=self._frame_index,
         )
-        return result, FrameDetail(particles, obs, best, probe_boxes, self._scale)
+        return result, FrameDetail(particles, obs, best, probe_boxes, self._scale, [Xk[:, best].copy() for Xk in X])
 
     def _prune_eps(self, n: int) -> float:
         """Bounded coding's ``eps`` for n particles: 0 (code all) for models it is not exact for."""
