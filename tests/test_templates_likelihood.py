@@ -128,3 +128,14 @@ def test_an_occlusion_fraction_equal_to_the_threshold_is_not_an_occlusion():
     above = [np.r_[1.0, 1.0, 1.0, 0, 0, 0, 0, 0], np.zeros(8)]
     d = _templates(d=8).update([far, far], c, above, update_angle=30, occlusion_fraction=0.25)
     assert d.occluded and d.replaced is None
+
+
+def test_fixed_templates_are_never_replaced():
+    ts = _templates()
+    ts.weights = np.array([0.1, 0.05, 0.15, 0.7])  # template 1 is the lightest, but fixed
+    D0 = [Dk.copy() for Dk in ts.dictionaries]
+    far = _unit(np.r_[1.0, -1.0, 1.0, -1.0, 1.0, -1.0]).astype(np.float32)
+    c = np.zeros((2, 4)); c[:, 3] = 0.1
+    d = ts.update([far, far], c, [np.zeros(6), np.zeros(6)], update_angle=30, occlusion_fraction=0.25, fixed=2)
+    assert d.replaced == 2
+    np.testing.assert_array_equal(ts.dictionaries[0][:, :2], D0[0][:, :2])

@@ -86,6 +86,9 @@ class TrackerConfig:
         frame and drifted. Mean overlap on the six sequences above: 30 -> 0.47,
         45 -> 0.50, 60 -> 0.61, never updating -> 0.60 (all with translation
         std 4).
+    fixed_templates : int
+        The first ``fixed_templates`` templates (the first frame's target and
+        its jittered copies) are never replaced; L1T keeps only the first.
     anchor_cos : float
         Drift check of the template update: the best candidate replaces a
         template only when its mean cosine over the views with the first
@@ -157,6 +160,7 @@ class TrackerConfig:
     solver_max_iter: int = 200
     update_angle: float = 60.0
     occlusion_fraction: float = 0.25
+    fixed_templates: int = 1
     anchor_cos: float = -1.0
     prune_eps: float = 1e-3
     frame_size: tuple | None = None
@@ -191,6 +195,7 @@ class TrackerConfig:
             "lbp_radius": self.lbp_radius > 0,
             "velocity": 0 <= self.velocity <= 1,
             "estimate": self.estimate in ("best", "mean"),
+            "fixed_templates": 1 <= int(self.fixed_templates) <= int(self.n_templates),
             "narrow_fraction": 0 <= self.narrow_fraction <= 1,
             "narrow_scale": self.narrow_scale > 0,
             "translation_power": 0 <= self.translation_power <= 1,
@@ -238,6 +243,7 @@ class TrackerConfig:
             solver_max_iter=200,
             update_angle=60.0,
             occlusion_fraction=0.25,
+            fixed_templates=1,
             anchor_cos=-1.0,
             frame_size=(320, 240),
             scale_normalize=False,

@@ -81,6 +81,7 @@ class TemplateSet:
         occlusion_fraction: float,
         intensity_view: int | None = 0,
         anchor_cos: float = -1.0,
+        fixed: int = 1,
     ) -> UpdateDecision:
         """Apply the rule of the module docstring for the frame's best candidate.
 
@@ -92,6 +93,8 @@ class TemplateSet:
         update_angle : degrees.
         occlusion_fraction : fraction in [0, 1].
         intensity_view : index of the intensity view in the lists, or None.
+        fixed : the first ``fixed`` templates (the first frame's) are never
+            replaced (L1T: 1, the exact initial target).
         anchor_cos : drift check against the first template: a template is
             replaced only when the mean over the views of the cosine between
             the candidate and template 0 is at least ``anchor_cos`` (-1: no check).
@@ -121,8 +124,9 @@ class TemplateSet:
             anchored = bool(
                 np.mean([float(np.dot(xk, Dk[:, 0])) for xk, Dk in zip(x, self.dictionaries)]) >= anchor_cos
             )
-        if self.cooldown == 0 and angle > update_angle and self.size > 1 and anchored:
-            j = 1 + int(np.argmin(self.weights[1:]))
+        fixed = max(1, int(fixed))
+        if self.cooldown == 0 and angle > update_angle and self.size > fixed and anchored:
+            j = fixed + int(np.argmin(self.weights[fixed:]))
             for xk, Dk in zip(x, self.dictionaries):
                 Dk[:, j] = xk
             self.weights[j] = np.median(self.weights)

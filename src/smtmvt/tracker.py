@@ -347,6 +347,7 @@ class Tracker:
                 occlusion_fraction=cfg.occlusion_fraction,
                 intensity_view=self._intensity_index,
                 anchor_cos=cfg.anchor_cos,
+                fixed=cfg.fixed_templates,
             )
         if cfg.estimate == "mean":
             w = p / p.sum()
