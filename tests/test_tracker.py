@@ -37,12 +37,20 @@ def test_same_seed_same_boxes_other_seed_other_boxes(demo):
 def test_tracks_demo_sequence(demo):
     """The built-in sequence (scale, rotation, illumination, occlusion, blur).
 
-    Measured mean overlap with the defaults (400 particles, seed 0): 0.729;
-    threshold set below it with margin.
+    Measured with the defaults (400 particles, seed 0): mean overlap 0.712 and
+    10 template replacements (frames 4, 10, 31, 51, 70, 74, 79, 86, 90, 96);
+    thresholds set below them with margin (0.05 and 5). A tracker whose
+    template update never replaces a template fails the second assertion.
     """
-    boxes = _track(demo.frames, demo.groundtruth[0], TrackerConfig(seed=0))
+    t = Tracker(TrackerConfig(seed=0))
+    t.init(demo.frames[0], demo.groundtruth[0])
+    results = [t.update(f) for f in demo.frames[1:]]
+    boxes = np.array([demo.groundtruth[0]] + [r.box for r in results])
     overlap = overlap_ratio(boxes, demo.groundtruth)
-    assert overlap.mean() > 0.6, overlap.mean()
+    assert overlap.mean() > 0.66, overlap.mean()
+    replaced = [r.template_replaced for r in results if r.template_replaced is not None]
+    assert len(replaced) >= 5, replaced
+    assert 0 not in replaced  # the exact first-frame template is never replaced
 
 
 def test_static_frame_stays_put(demo):
@@ -110,14 +118,14 @@ def test_reinit_restarts_on_new_target(demo):
 def test_tracks_real_crossing(otb_dir):
     """OTB Crossing (120 frames); the paper reports 0.78 average overlap.
 
-    Measured 0.810 with the defaults (seed 0); threshold set below it.
+    Measured 0.795 with the defaults (seed 0); threshold set 0.045 below it.
     """
     from smtmvt.data import open_sequence
 
     seq = open_sequence(otb_dir / "Crossing")
     boxes = _track([seq[i] for i in range(len(seq))], seq.first_box, TrackerConfig(seed=0))
     overlap = overlap_ratio(boxes, seq.groundtruth)
-    assert overlap.mean() > 0.7, overlap.mean()
+    assert overlap.mean() > 0.75, overlap.mean()
 
 
 def test_prepare_frame_keeps_the_channel_count_it_is_given():
@@ -140,13 +148,14 @@ def test_comparison_models_track_in_the_same_filter(demo, name, views):
     """The paper's comparison models as observation models of our particle filter."""
     from smtmvt.evaluation.trackers import make_tracker
 
-    cfg = FAST.replace(model=name, views=views, n_particles=60)
+    paper = TrackerConfig.paper(seed=0)
+    cfg = paper.replace(model=name, views=views, n_particles=60)
     boxes = _track(demo.frames[:10], demo.groundtruth[0], cfg)
     assert overlap_ratio(boxes, demo.groundtruth[:10]).mean() > 0.5
     # A different observation model really ran: same particles (same seed), other codes.
     residuals = {}
     for model, v in ((name, views), ("smtmvt", views)):
-        t = Tracker(FAST.replace(model=model, views=v, n_particles=60))
+        t = Tracker(paper.replace(model=model, views=v, n_particles=60))
         t.init(demo.frames[0], demo.groundtruth[0])
         residuals[model] = t.update(demo.frames[1]).residual
     assert residuals[name] != pytest.approx(residuals["smtmvt"], rel=1e-6)
