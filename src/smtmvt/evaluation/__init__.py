@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import importlib
 
+from . import metrics as _metrics
 from .rundir import RunDir, RunDirError, RunInfo, RunLockedError
 from .runner import (
     PairOutcome,
@@ -47,24 +48,7 @@ from .trackers import (
 
 #: Names re-exported lazily from the scoring/report modules: ``name -> module``.
 _LAZY = {
-    **dict.fromkeys(
-        (
-            "SUCCESS_THRESHOLDS",
-            "PRECISION_THRESHOLDS",
-            "INVALID_MODES",
-            "overlap_ratio",
-            "center_error",
-            "success_curve",
-            "precision_curve",
-            "valid_groundtruth",
-            "repair_predictions",
-            "SequenceScore",
-            "score_sequence",
-            "Aggregate",
-            "aggregate",
-        ),
-        "metrics",
-    ),
+    **dict.fromkeys(_metrics.__all__, "metrics"),  # numpy only: its name list is read, not copied
     **dict.fromkeys(
         (
             "load_published_scores",
