@@ -5,6 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+# got10k is a pinned test dependency (requirements-dev.txt): imported, not skipped when missing.
+# Its ExperimentOTB computes the OTB curves (the module imports six, also pinned).
+import got10k.experiments.otb as got10k_otb
+import got10k.utils.metrics as got10k_metrics
+
 from smtmvt.evaluation.metrics import (
     PRECISION_THRESHOLDS,
     SUCCESS_THRESHOLDS,
@@ -18,10 +23,6 @@ from smtmvt.evaluation.metrics import (
     valid_groundtruth,
 )
 from smtmvt.evaluation.published import read_box_file
-
-got10k_metrics = pytest.importorskip("got10k.utils.metrics")
-# its ExperimentOTB computes the OTB curves (the module imports six, a pinned test dependency)
-got10k_otb = pytest.importorskip("got10k.experiments.otb")
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -41,6 +42,28 @@ def matlab_calc_rect_int(A, B):
     areaA = A[:, 2] * A[:, 3]
     areaB = B[:, 2] * B[:, 3]
     return tmp / (areaA + areaB - tmp)
+
+
+def matlab_repair_loop(res, rect_anno):
+    """Transcription of the repair loop of the OTB toolkit's util/calcSeqErrRobust.m::
+
+        for i = 2:seq_length
+            r = results.res(i,:);
+            r_anno = rect_anno(i,:);
+            if (isnan(r) | r(3)<=0 | r(4)<=0)&(~isnan(r_anno))
+                results.res(i,:)=results.res(i-1,:);
+            end
+        end
+
+    MATLAB's ``if`` on a vector is true when every element is nonzero."""
+    res = np.array(res, dtype=float)
+    for i in range(1, len(res)):
+        r, r_anno = res[i], rect_anno[i]
+        with np.errstate(invalid="ignore"):
+            cond = (np.isnan(r) | (r[2] <= 0) | (r[3] <= 0)) & ~np.isnan(r_anno)
+        if np.all(cond):
+            res[i] = res[i - 1]
+    return res
 
 
 class _NoDataset(list):
@@ -221,6 +244,45 @@ def test_nan_and_zero_size_predictions_take_previous_box():
     assert succ[0] == pytest.approx(3 / 5) and s.success[0] == 1.0
 
 
+def test_no_repair_where_the_groundtruth_has_nan():
+    """MATLAB repairs a frame only when its ground truth has no NaN; an unrepaired NaN box
+    is then what the next bad frame copies, so that frame fails too."""
+    gt = np.array([[10, 10, 20, 20]] * 5, float)
+    gt[2, 1] = np.nan  # one NaN number is enough to block the repair
+    pred = np.array([
+        [10, 10, 20, 20],
+        [12, 10, 20, 20],
+        [np.nan] * 4,  # gt has NaN: stays NaN
+        [50, 50, 0, 20],  # zero width, gt fine: takes frame 2's box, which is NaN
+        [10, 10, 20, 20],
+    ])
+    fixed = repair_predictions(pred, gt)
+    assert np.isnan(fixed[2]).all() and np.isnan(fixed[3]).all()
+    np.testing.assert_array_equal(fixed, matlab_repair_loop(pred, gt))
+    s = score_sequence(pred, gt)
+    np.testing.assert_array_equal(s.overlaps[2:4], [-1, 0])  # invalid gt; NaN box = failure
+    assert s.errors[3] == np.inf
+
+
+def test_repair_equals_matlab_loop_on_random_sequences():
+    rng = np.random.default_rng(5)
+    changed = left_nan = 0
+    for _ in range(30):
+        gt = random_boxes(rng, 40)
+        pred = perturb(rng, gt)
+        pred[rng.random(40) < 0.2] = np.nan
+        pred[rng.random(40) < 0.1, 2] = 0.0
+        pred[rng.random(40) < 0.1, 3] = -rng.uniform(0, 5)
+        pred[rng.random(40) < 0.05, 0] = np.nan  # partly NaN: MATLAB does not repair it
+        gt[rng.random(40) < 0.2, rng.integers(0, 4)] = np.nan
+        ours = repair_predictions(pred, gt)
+        np.testing.assert_array_equal(ours, matlab_repair_loop(pred, gt))
+        same = (ours == pred) | (np.isnan(ours) & np.isnan(pred))
+        changed += int(np.sum(~same.all(axis=1)))
+        left_nan += int(np.sum(np.isnan(ours).all(axis=1)[1:]))
+    assert changed > 200 and left_nan > 40  # both branches are exercised (measured 323 and 69)
+
+
 def test_invalid_groundtruth_otb_rule():
     gt = np.array([
         [10, 10, 20, 20],
@@ -277,3 +339,27 @@ def test_aggregate_averages_curves_over_sequences_not_frames():
     agg2 = aggregate([{"success": perfect.success, "precision": perfect.precision},
                       {"success": half.success, "precision": half.precision}])
     assert agg2.auc == agg.auc
+
+
+def test_aggregate_leaves_out_all_zero_curves_like_plotdrawsave():
+    """MATLAB's plotDrawSave: ``aa = aa(sum(aa,2) > eps, :)`` before the mean, per curve."""
+    gt = np.array([[10, 10, 20, 20]] * 4, float)
+    perfect = score_sequence(gt, gt)
+    # frame 1 unannotated (so not replaced by a valid box), the rest missed: the success
+    # curve is all zero; precision is not (invalid frames are hits under "otb")
+    gt_bad = gt.copy()
+    gt_bad[0] = 0
+    empty = score_sequence(np.array([[500, 500, 20, 20]] * 4, float), gt_bad)
+    assert not empty.success.any() and empty.precision[20] == pytest.approx(1 / 4)
+
+    agg = aggregate([perfect, empty])
+    np.testing.assert_array_equal(agg.success, perfect.success)  # the empty curve is left out
+    np.testing.assert_allclose(agg.precision, (perfect.precision + empty.precision) / 2)
+    assert agg.auc == pytest.approx(20 / 21)
+    assert agg.precision20 == pytest.approx((1 + 1 / 4) / 2)
+
+    kept = aggregate([perfect, empty], drop_empty=False)
+    np.testing.assert_allclose(kept.success, perfect.success / 2)
+    assert kept.auc == pytest.approx(10 / 21)
+    # all curves empty: nothing to leave out, the mean is zero
+    assert aggregate([empty, empty]).auc == 0.0
