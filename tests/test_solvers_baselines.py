@@ -10,9 +10,8 @@ import pytest
 from smtmvt.solvers import SOLVERS, solve_smtmvt
 from smtmvt.solvers.baselines import solve_l1t, solve_mtmvt_lad, solve_mtmvt_ls, solve_mtt
 
+import cvxpy as cp  # a pinned test dependency (requirements-dev.txt): missing means broken
 from solver_instances import make_instance  # noqa: E402
-
-cp = pytest.importorskip("cvxpy")
 
 
 def _solve(prob):
