@@ -117,3 +117,16 @@ def test_inside_fraction_edges_are_inclusive_on_all_four_sides(channels):
     ])
     f = inside_fraction(box_to_affine(boxes), shape, size=(10, 10))
     np.testing.assert_allclose(f, [1, 1, 1, 1, 0.9, 0.9, 0.9, 0.9, 1, 0.25], rtol=0, atol=1e-12)
+
+
+def test_any_image_dtype_gives_float32_patches():
+    """warp_patches converts the image to float32 first: a uint8 or float64 image gives
+    the patches of its float32 copy, as float32."""
+    rng = np.random.default_rng(6)
+    img8 = rng.integers(0, 256, (50, 70), dtype=np.uint8)
+    params = box_to_affine(np.array([[10.3, 12.7, 20, 15], [30, 5, 25, 30]]))
+    ref = warp_patches(img8.astype(np.float32), params, (9, 11))
+    for img in (img8, img8.astype(np.float64)):
+        got = warp_patches(img, params, (9, 11))
+        assert got.dtype == np.float32
+        np.testing.assert_array_equal(got, ref)
