@@ -127,6 +127,9 @@ def test_registry_calling_convention(inst):
         C, E = solver(X, D)
         assert C.shape == (K, N, n) and C.dtype == np.float64, name
         assert [e.shape for e in E] == [x.shape for x in X], name
+        if name != "smtmvt":  # (its info.method is the algorithm, "admm" or "paper")
+            _, _, info = solver(X, D, return_info=True)
+            assert info.method == name
 
 
 @pytest.mark.parametrize("solver, kwargs, name", [

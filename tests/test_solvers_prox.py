@@ -1,10 +1,13 @@
 """Tests of the proximal operators against direct definitions."""
 
+import warnings
+
 import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
 from smtmvt.solvers.prox import (
+    group_huber_prox,
     group_shrink,
     huber_prox,
     nonneg_shrink,
@@ -76,3 +79,17 @@ def test_group_shrink():
     V = np.array([[3.0, 4.0], [0.3, 0.4]])  # row norms 5 and 0.5
     out = group_shrink(V, 1.0, axis=1)
     assert np.allclose(out, [[3.0 * 0.8, 4.0 * 0.8], [0.0, 0.0]])
+
+
+@pytest.mark.parametrize("gamma", [0.0, 0.5])
+def test_group_huber_prox_of_zero_groups_is_silent(gamma):
+    """All-zero groups (and gamma = 0, a zero radius) are ordinary input inside the
+    solvers: exact results, no divide/invalid warnings."""
+    V = np.zeros((3, 4))
+    V[1] = [3.0, 4.0, 0.0, 0.0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        out = group_huber_prox(V, gamma, 2.0, axis=1)
+    W = V * 0.5  # 2 v / (2 + rho)
+    expected = V - W * min(1.0, (gamma / 2.0) / 2.5)  # row 1: ||W|| = 2.5, radius gamma/rho
+    np.testing.assert_allclose(out, expected, rtol=0, atol=1e-15)
