@@ -471,3 +471,16 @@ def test_aggregate_leaves_out_all_zero_curves_like_plotdrawsave():
     assert kept.auc == pytest.approx(10 / 21)
     # all curves empty: nothing to leave out, the mean is zero
     assert aggregate([empty, empty]).auc == 0.0
+
+
+def test_sequence_score_to_dict_holds_the_scores_as_plain_numbers():
+    gt = np.array([[10, 10, 20, 20]] * 3 + [[0, 0, 0, 0]], float)
+    pred = gt.copy()
+    pred[2] = [14, 10, 20, 20]  # 16 of 20 columns: IoU 320 / 480
+    s = score_sequence(pred, gt)
+    d = s.to_dict()
+    assert d == {"auc": s.auc, "precision20": s.precision20, "avg_overlap": s.avg_overlap,
+                 "n_frames": 4, "n_valid": 3}
+    assert d["avg_overlap"] == pytest.approx((2 + 2 / 3) / 3)
+    assert all(type(v) is float for k, v in d.items() if k not in ("n_frames", "n_valid"))
+    assert type(d["n_frames"]) is int and type(d["n_valid"]) is int
