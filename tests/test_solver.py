@@ -1,5 +1,7 @@
 """Tests of the SMTMVT solver against an independent cvxpy formulation."""
 
+import re
+
 import numpy as np
 import pytest
 
@@ -220,6 +222,8 @@ def test_info_and_iteration_cap():
     C, E, info = solve_smtmvt(X, D, return_info=True)
     assert info.converged and 1 < info.iterations < 1000
     assert info.objective == pytest.approx(smtmvt_objective(X, D, C, E, 0.1, 0.25), rel=1e-12)
+    for value in (info.primal_residual, info.dual_residual, info.rho):
+        assert type(value) is float and np.isfinite(value) and value > 0
 
 
 def test_float32_input_gives_float64_output_and_same_solution():
@@ -286,6 +290,16 @@ def test_paper_method_stopping_rule_is_the_relative_change():
     _, _, info = solve_smtmvt(X, D, tol=tol, max_iter=1000, return_info=True, **kw)
     assert info.converged is True and info.iterations == first
     assert info.primal_residual == pytest.approx(changes[first], rel=1e-9)
+
+
+def test_warm_start_estimates_the_residual_dual_from_E0():
+    """E0 enters the ADMM's first iterate (the dual of the residual block), as documented:
+    the same C0 with another E0 gives another first step."""
+    X, D = make_instance(10, n=6)
+    C, E = solve_smtmvt(X, D, lam=0.3, tol=1e-10, max_iter=10000)
+    C_a, _ = solve_smtmvt(X, D, lam=0.3, C0=C, E0=E, max_iter=1)
+    C_b, _ = solve_smtmvt(X, D, lam=0.3, C0=C, E0=[e + 0.2 for e in E], max_iter=1)
+    assert np.abs(C_a - C_b).max() > 1e-3
 
 
 def test_any_start_reaches_the_optimum():
@@ -374,6 +388,88 @@ def test_bad_parameters_are_named(kwargs, name):
     X, D = make_instance(15)
     with pytest.raises(ValueError, match=name):
         solve_smtmvt(X, D, **kwargs)
+
+
+def test_integer_views_one_row_views_and_one_template_are_accepted():
+    X, D = make_instance(16, K=2, N=1, n=3)
+    X[1], D[1] = X[1][:1], D[1][:1]  # d_k = 1
+    C, E = solve_smtmvt(X, D)
+    assert C.shape == (2, 1, 3)
+    Xi = [np.round(10 * x).astype(np.int32) for x in X]
+    Di = [np.round(10 * d).astype(np.int64) for d in D]
+    Ci, _ = solve_smtmvt(Xi, Di, tol=1e-10, max_iter=10000)
+    Cf, _ = solve_smtmvt([x.astype(float) for x in Xi], [d.astype(float) for d in Di], tol=1e-10, max_iter=10000)
+    np.testing.assert_array_equal(Ci, Cf)
+
+
+def _views(edit=None):
+    """Instance 15 (K=3, N=5, n=4), optionally with ``edit(X, D)`` applied."""
+    X, D = make_instance(15)
+    if edit is not None:
+        edit(X, D)
+    return X, D
+
+
+def _set(lst, k, fn):
+    lst[k] = fn(lst[k])
+
+
+def _nan_E0(X):
+    E0 = [np.zeros_like(x) for x in X]
+    E0[1][0, 0] = np.inf
+    return E0
+
+
+# (X, D) edit, solver keyword arguments (a function of X), the message's start
+_INPUT_ERRORS = [
+    (lambda X, D: X.__setitem__(slice(None), [5.0]), None, "X[0] must be 2-D, got shape ()"),
+    (lambda X, D: _set(X, 1, lambda x: x[..., None]), None, "X[1] must be 2-D, got shape "),
+    (lambda X, D: _set(D, 2, lambda d: d.astype(complex)), None,
+     "D[2] must be a real float or integer array, got dtype complex128"),
+    (lambda X, D: _set(X, 2, lambda x: x[:, :-1]), None,
+     "X[2] has 3 columns (candidates) but X[0] has 4: every view must hold the same n candidates"),
+    (lambda X, D: _set(D, 1, lambda d: d[:, :-1]), None,
+     "D[1] has 4 columns (templates) but D[0] has 5: every view must hold the same N templates"),
+    (lambda X, D: (_set(X, 0, lambda x: x[:0]), _set(D, 0, lambda d: d[:0])), None, "X[0] has zero rows (d_k = 0)"),
+    (lambda X, D: X.__setitem__(slice(None), [x[:, :0] for x in X]), None,
+     "X has zero columns: there must be at least one candidate"),
+    (lambda X, D: D.__setitem__(slice(None), [d[:, :0] for d in D]), None,
+     "D has zero columns: there must be at least one template"),
+    (None, lambda X: dict(lam="big"), "lam must be a number, got 'big'"),
+    (None, lambda X: dict(C0=np.full((3, 5, 4), np.nan)), "C0 contains NaN or infinite values"),
+    (None, lambda X: dict(C0=np.zeros((3, 5, 4)), E0=5), "E0 must be a list of K arrays shaped like X"),
+    (None, lambda X: dict(C0=np.zeros((3, 5, 4)), E0=[np.zeros((2, 2))] * 2), "E0 must hold K=3 arrays, got 2"),
+    (None, lambda X: dict(C0=np.zeros((3, 5, 4)), E0=_nan_E0(X)), "E0[1] contains NaN or infinite values"),
+]
+
+
+@pytest.mark.parametrize("edit, kwargs, message", _INPUT_ERRORS)
+def test_input_errors_say_what_is_wrong(edit, kwargs, message):
+    X, D = _views(edit)
+    with pytest.raises(ValueError, match="^" + re.escape(message)):
+        solve_smtmvt(X, D, **(kwargs(X) if kwargs else {}))
+
+
+def test_input_errors_name_the_argument_and_the_sizes():
+    X, D = make_instance(15)
+    with pytest.raises(ValueError, match=re.escape("X must be a list of K 2-D arrays, got float")):
+        solve_smtmvt(5.0, D)
+    with pytest.raises(ValueError, match=re.escape(
+            "D must be a list of K 2-D arrays (one per view), got a single 2-D array; wrap it as [D] for one view")):
+        solve_smtmvt(X, D[0])
+    with pytest.raises(ValueError, match="^" + re.escape("X must hold at least one view, got an empty sequence")):
+        solve_smtmvt([], [])
+    D[1] = D[1][:-2]
+    rows = f"X[1] has {X[1].shape[0]} rows but D[1] has {D[1].shape[0]}: the feature dimension d_k of a view must match"
+    assert X[1].shape[0] not in (X[1].shape[1], D[1].shape[0]) and D[1].shape[0] != D[1].shape[1]  # distinguishable
+    with pytest.raises(ValueError, match="^" + re.escape(rows) + "$"):
+        solve_smtmvt(X, D)
+
+
+def test_objective_checks_the_shape_of_C():
+    X, D = make_instance(15)
+    with pytest.raises(ValueError, match=re.escape("C must have shape (K, N, n) = (3, 5, 4), got (3, 4, 4)")):
+        smtmvt_objective(X, D, np.zeros((3, 4, 4)), [np.zeros_like(x) for x in X], 0.1, 0.25)
 
 
 def test_nan_input_rejected():
