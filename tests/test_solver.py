@@ -233,8 +233,8 @@ def test_float32_input_gives_float64_output_and_same_solution():
     D32 = [d.astype(np.float32) for d in D]
     C32, E32 = solve_smtmvt(X32, D32, tol=1e-9)
     assert C32.dtype == np.float64 and all(e.dtype == np.float64 for e in E32)
-    # same problem up to the float32 rounding of the data
-    assert np.allclose(C32, C64, atol=1e-4)
+    # same problem up to the float32 rounding of the data (measured 6.0e-8 apart)
+    assert np.allclose(C32, C64, rtol=0, atol=1e-6)
 
 
 def test_warm_start_is_used():
@@ -309,7 +309,7 @@ def test_any_start_reaches_the_optimum():
     C0 = rng.standard_normal((3, 5, 6))  # even infeasible (negative) starts
     C, _, info = solve_smtmvt(X, D, lam=0.3, tol=1e-9, C0=C0, return_info=True)
     assert info.converged and np.all(C >= 0)
-    assert info.objective == pytest.approx(opt.objective, rel=1e-7)
+    assert info.objective == pytest.approx(opt.objective, rel=1e-10)  # measured 3.5e-12 apart
 
 
 def test_reconstruction_residual_excludes_E():
