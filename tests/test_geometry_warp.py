@@ -112,7 +112,7 @@ def test_inside_fraction_edges_are_inclusive_on_all_four_sides(channels):
         [50.75, 5, 10, 10],
         [5, -0.75, 10, 10],
         [5, 30.75, 10, 10],
-        [45.5, 25.5, 10, 10],  # 10 of 10 columns, 10 of 10 rows inside, bottom-right corner
+        [45.5, 25.5, 10, 10],  # inside, 5 px from the right and bottom edges
         [55.5, 35.5, 10, 10],  # 5 columns x 5 rows inside
     ])
     f = inside_fraction(box_to_affine(boxes), shape, size=(10, 10))
