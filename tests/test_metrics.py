@@ -320,8 +320,10 @@ def test_invalid_groundtruth_otb_rule():
     assert d.success[0] == pytest.approx(3 / 4)
     assert d.precision[20] == pytest.approx(3 / 4)
     # the per-frame arrays keep all frames, the dropped ones marked
-    np.testing.assert_array_equal(d.overlaps[[2, 3]], -1)
-    np.testing.assert_array_equal(d.errors[[2, 3]], np.inf)
+    ov4, err4 = overlap_ratio(pred[4], gt[4])[0], center_error(pred[4], gt[4])[0]
+    np.testing.assert_allclose(d.overlaps, [1, 0, -1, -1, ov4, 1], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(d.errors, [0, center_error(pred[1], gt[1])[0], np.inf, np.inf, err4, 0],
+                               rtol=0, atol=1e-12)
 
     f = score_sequence(pred, gt, invalid="fail")  # pytracking's default: failures for both
     assert f.success[0] == pytest.approx(3 / 6)
@@ -471,6 +473,12 @@ def test_aggregate_leaves_out_all_zero_curves_like_plotdrawsave():
     assert kept.auc == pytest.approx(10 / 21)
     # all curves empty: nothing to leave out, the mean is zero
     assert aggregate([empty, empty]).auc == 0.0
+    # precision curves are left out on their own (here as the dicts of summary.json)
+    no_hits = {"success": perfect.success, "precision": np.zeros(51)}
+    agg = aggregate([perfect, no_hits])
+    np.testing.assert_array_equal(agg.precision, perfect.precision)
+    np.testing.assert_array_equal(agg.success, perfect.success)
+    assert aggregate([perfect, no_hits], drop_empty=False).precision20 == 0.5
 
 
 def test_sequence_score_to_dict_holds_the_scores_as_plain_numbers():
