@@ -132,23 +132,20 @@ def test_registry_calling_convention(inst):
         C, E = solver(X, D)
         assert C.shape == (K, N, n) and C.dtype == np.float64, name
         assert [e.shape for e in E] == [x.shape for x in X], name
-        if name != "smtmvt":  # (its info.method is the algorithm, "admm" or "paper")
-            _, _, info = solver(X, D, return_info=True)
-            assert info.method == name
 
 
 @pytest.mark.parametrize("name", ["l1t", "mtt", "mtmvt-ls", "mtmvt-lad"])
 def test_iteration_cap_and_info(inst, name):
-    """max_iter=1 is allowed and honoured; the info fields are numbers."""
+    """max_iter=1 is allowed and honoured; info names the model and holds numbers."""
     X, D, *_ = inst
     solver = SOLVERS[name]
     _, _, info = solver(X, D, max_iter=1, return_info=True)
     assert info.iterations == 1 and info.converged is False
     _, _, info = solver(X, D, max_iter=3, return_info=True)
-    assert info.iterations == 3 and info.converged is False
+    assert info.iterations == 3 and info.converged is False and info.method == name
     for value in (info.primal_residual, info.dual_residual, info.rho, info.objective):
         assert type(value) is float and np.isfinite(value) and value > 0
-    _, _, info = solver(X, D, tol=1e-3, max_iter=5000, return_info=True)
+    _, _, info = solver(X, D, tol=1e-2, max_iter=5000, return_info=True)
     assert info.converged is True and 3 < info.iterations < 5000
 
 
