@@ -414,7 +414,7 @@ def _set(lst, k, fn):
     lst[k] = fn(lst[k])
 
 
-def _nan_E0(X):
+def _infinite_E0(X):
     E0 = [np.zeros_like(x) for x in X]
     E0[1][0, 0] = np.inf
     return E0
@@ -439,7 +439,7 @@ _INPUT_ERRORS = [
     (None, lambda X: dict(C0=np.full((3, 5, 4), np.nan)), "C0 contains NaN or infinite values"),
     (None, lambda X: dict(C0=np.zeros((3, 5, 4)), E0=5), "E0 must be a list of K arrays shaped like X"),
     (None, lambda X: dict(C0=np.zeros((3, 5, 4)), E0=[np.zeros((2, 2))] * 2), "E0 must hold K=3 arrays, got 2"),
-    (None, lambda X: dict(C0=np.zeros((3, 5, 4)), E0=_nan_E0(X)), "E0[1] contains NaN or infinite values"),
+    (None, lambda X: dict(C0=np.zeros((3, 5, 4)), E0=_infinite_E0(X)), "E0[1] contains NaN or infinite values"),
 ]
 
 
