@@ -37,6 +37,25 @@ def test_track_writes_one_based_otb_lines(otb_folder, tmp_path, capsys):
     assert "mean overlap" in text and "fps" in text
 
 
+def test_track_lines_are_the_boxes_of_the_tracker_driven_directly(otb_folder, tmp_path):
+    """Every line, not only the first: the boxes a Tracker with the same seed and
+    particle count gives when driven by hand on the same frames."""
+    from smtmvt import Tracker, TrackerConfig
+
+    root, gt = otb_folder
+    out = tmp_path / "res.txt"
+    assert main(["track", str(root), "--out", str(out), "--particles", "60", "--seed", "3", "--quiet"]) == 0
+    written = read_boxes(out)  # 0-based
+
+    frames = [cv2.imread(str(p))[:, :, ::-1] for p in sorted((root / "img").glob("*.png"))]
+    tracker = Tracker(TrackerConfig(seed=3, n_particles=60))
+    tracker.init(frames[0], gt[0])
+    expected = np.array([gt[0]] + [tracker.update(f).box for f in frames[1:]])
+    assert written.shape == expected.shape == (6, 4)
+    np.testing.assert_allclose(written, expected, rtol=0, atol=1e-9)
+    assert np.abs(expected[1:] - gt[0]).max() > 0.5  # the boxes moved: not just the start box
+
+
 def test_track_with_box_max_frames_and_video(otb_folder, tmp_path):
     root, gt = otb_folder
     out, video = tmp_path / "res.txt", tmp_path / "v.gif"

@@ -76,3 +76,57 @@ def test_sampling_grid_and_inside_fraction():
     np.testing.assert_allclose(X[0, 0], np.arange(10), atol=1e-5)
     f = inside_fraction(p, (50, 50), size=(10, 10))
     assert f[0] == 1.0 and f[1] == 0.0 and f[2] == pytest.approx(0.5)
+
+
+def test_large_batch_split_into_remap_chunks():
+    """Above 32000 patch rows cv2.remap is called chunk by chunk (its maps must stay
+    below 32767 rows): every chunk must warp its own particles, the last one partial."""
+    from skimage import data
+
+    img = cv2.cvtColor(data.astronaut().astype(np.float32) / 255.0, cv2.COLOR_RGB2GRAY)
+    rng = np.random.default_rng(4)
+    n, size = 1100, (64, 6)  # 500 particles per chunk: chunks of 500, 500 and 100
+    assert n * size[0] > 2 * 32000
+    params = np.repeat(box_to_affine((200, 180, 60, 90))[None], n, axis=0)
+    params[:, :4] *= rng.uniform(0.7, 1.3, (n, 4))
+    params[:, 4:] += rng.normal(0, 80, (n, 2))
+    got = warp_patches(img, params, size)
+    assert got.shape == (n,) + size
+    for k in range(n):
+        np.testing.assert_allclose(got[k], _warp_affine_reference(img, params[k], size), atol=2e-3)
+
+
+@pytest.mark.parametrize("channels", [(), (3,)])
+def test_inside_fraction_edges_are_inclusive_on_all_four_sides(channels):
+    """Pixel centres are 0..W-1, so the image spans [-0.5, W - 0.5] x [-0.5, H - 0.5]: a
+    sample point exactly on an edge is inside, a quarter pixel beyond it is not. A 10x10
+    box at size (10, 10) samples the points x + 0..9, y + 0..9. The image is not square,
+    so W and H cannot be swapped."""
+    shape = (40, 60) + channels  # H = 40, W = 60
+    boxes = np.array([
+        [-0.5, 5, 10, 10],  # first column on the left edge
+        [50.5, 5, 10, 10],  # last column on the right edge, x = W - 0.5
+        [5, -0.5, 10, 10],  # top edge
+        [5, 30.5, 10, 10],  # last row on the bottom edge, y = H - 0.5
+        [-0.75, 5, 10, 10],  # one column a quarter pixel beyond each edge
+        [50.75, 5, 10, 10],
+        [5, -0.75, 10, 10],
+        [5, 30.75, 10, 10],
+        [45.5, 25.5, 10, 10],  # inside, 5 px from the right and bottom edges
+        [55.5, 35.5, 10, 10],  # 5 columns x 5 rows inside
+    ])
+    f = inside_fraction(box_to_affine(boxes), shape, size=(10, 10))
+    np.testing.assert_allclose(f, [1, 1, 1, 1, 0.9, 0.9, 0.9, 0.9, 1, 0.25], rtol=0, atol=1e-12)
+
+
+def test_any_image_dtype_gives_float32_patches():
+    """warp_patches converts the image to float32 first: a uint8 or float64 image gives
+    the patches of its float32 copy, as float32."""
+    rng = np.random.default_rng(6)
+    img8 = rng.integers(0, 256, (50, 70), dtype=np.uint8)
+    params = box_to_affine(np.array([[10.3, 12.7, 20, 15], [30, 5, 25, 30]]))
+    ref = warp_patches(img8.astype(np.float32), params, (9, 11))
+    for img in (img8, img8.astype(np.float64)):
+        got = warp_patches(img, params, (9, 11))
+        assert got.dtype == np.float32
+        np.testing.assert_array_equal(got, ref)

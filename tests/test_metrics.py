@@ -2,8 +2,16 @@
 
 from __future__ import annotations
 
+import re
+import warnings
+
 import numpy as np
 import pytest
+
+# got10k is a pinned test dependency (requirements-dev.txt): imported, not skipped when missing.
+# Its ExperimentOTB computes the OTB curves (the module imports six, also pinned).
+import got10k.experiments.otb as got10k_otb
+import got10k.utils.metrics as got10k_metrics
 
 from smtmvt.evaluation.metrics import (
     PRECISION_THRESHOLDS,
@@ -18,10 +26,6 @@ from smtmvt.evaluation.metrics import (
     valid_groundtruth,
 )
 from smtmvt.evaluation.published import read_box_file
-
-got10k_metrics = pytest.importorskip("got10k.utils.metrics")
-# its ExperimentOTB computes the OTB curves (the module imports six, a pinned test dependency)
-got10k_otb = pytest.importorskip("got10k.experiments.otb")
 
 
 # ----------------------------------------------------------------------------- helpers
@@ -41,6 +45,28 @@ def matlab_calc_rect_int(A, B):
     areaA = A[:, 2] * A[:, 3]
     areaB = B[:, 2] * B[:, 3]
     return tmp / (areaA + areaB - tmp)
+
+
+def matlab_repair_loop(res, rect_anno):
+    """Transcription of the repair loop of the OTB toolkit's util/calcSeqErrRobust.m::
+
+        for i = 2:seq_length
+            r = results.res(i,:);
+            r_anno = rect_anno(i,:);
+            if (isnan(r) | r(3)<=0 | r(4)<=0)&(~isnan(r_anno))
+                results.res(i,:)=results.res(i-1,:);
+            end
+        end
+
+    MATLAB's ``if`` on a vector is true when every element is nonzero."""
+    res = np.array(res, dtype=float)
+    for i in range(1, len(res)):
+        r, r_anno = res[i], rect_anno[i]
+        with np.errstate(invalid="ignore"):
+            cond = (np.isnan(r) | (r[2] <= 0) | (r[3] <= 0)) & ~np.isnan(r_anno)
+        if np.all(cond):
+            res[i] = res[i - 1]
+    return res
 
 
 class _NoDataset(list):
@@ -221,6 +247,49 @@ def test_nan_and_zero_size_predictions_take_previous_box():
     assert succ[0] == pytest.approx(3 / 5) and s.success[0] == 1.0
 
 
+def test_no_repair_where_the_groundtruth_has_nan():
+    """MATLAB repairs a frame only when its ground truth has no NaN; an unrepaired NaN box
+    is then what the next bad frame copies, so that frame fails too."""
+    gt = np.array([[10, 10, 20, 20]] * 5, float)
+    gt[2, 1] = np.nan  # one NaN number is enough to block the repair
+    pred = np.array([
+        [10, 10, 20, 20],
+        [12, 10, 20, 20],
+        [np.nan] * 4,  # gt has NaN: stays NaN
+        [50, 50, 0, 20],  # zero width, gt fine: takes frame 2's box, which is NaN
+        [10, 10, 20, 20],
+    ])
+    fixed = repair_predictions(pred, gt)
+    assert np.isnan(fixed[2]).all() and np.isnan(fixed[3]).all()
+    np.testing.assert_array_equal(fixed, matlab_repair_loop(pred, gt))
+    s = score_sequence(pred, gt)
+    np.testing.assert_array_equal(s.overlaps[2:4], [-1, 0])  # invalid gt; NaN box = failure
+    assert s.errors[3] == np.inf
+
+
+def test_repair_equals_matlab_loop_on_random_sequences():
+    rng = np.random.default_rng(5)
+    changed = left_nan = 0
+    for _ in range(30):
+        gt = random_boxes(rng, 40)
+        pred = perturb(rng, gt)
+        pred[rng.random(40) < 0.2] = np.nan
+        pred[rng.random(40) < 0.1, 2] = 0.0
+        pred[rng.random(40) < 0.1, 3] = -rng.uniform(0, 5)
+        pred[rng.random(40) < 0.05, 0] = np.nan  # partly NaN: MATLAB does not repair it
+        pred[rng.random(40) < 0.05, 3] = 0.0
+        pred[rng.random(40) < 0.05, 2:] = 0.5  # small but positive: kept
+        if rng.random() < 0.3:
+            pred[0] = np.nan  # frame 1 is never repaired (score_sequence replaces it first)
+        gt[rng.random(40) < 0.2, rng.integers(0, 4)] = np.nan
+        ours = repair_predictions(pred, gt)
+        np.testing.assert_array_equal(ours, matlab_repair_loop(pred, gt))
+        same = (ours == pred) | (np.isnan(ours) & np.isnan(pred))
+        changed += int(np.sum(~same.all(axis=1)))
+        left_nan += int(np.sum(np.isnan(ours).all(axis=1)[1:]))
+    assert changed > 200 and left_nan > 40  # both branches are exercised (measured 323 and 69)
+
+
 def test_invalid_groundtruth_otb_rule():
     gt = np.array([
         [10, 10, 20, 20],
@@ -240,20 +309,123 @@ def test_invalid_groundtruth_otb_rule():
     assert s.success[0] == pytest.approx(2 / 6)
     # precision: invalid frames are hits (error -1)
     assert s.precision[20] == pytest.approx(5 / 6)
+    assert s.precision[0] == pytest.approx(5 / 6)  # -1 is a hit even at threshold 0
     np.testing.assert_array_equal(s.overlaps[2:5], -1)
+    np.testing.assert_array_equal(s.errors[2:5], -1)
+    np.testing.assert_array_equal(s.valid, [1, 1, 0, 0, 0, 1])
     assert s.avg_overlap == pytest.approx(2 / 3)  # mean over the 3 valid frames
 
     d = score_sequence(pred, gt, invalid="pytracking")  # dropped: 4 valid frames of 6
-    assert d.n_valid == 4
+    assert d.n_valid == 4 and d.n_frames == 6
     assert d.success[0] == pytest.approx(3 / 4)
     assert d.precision[20] == pytest.approx(3 / 4)
+    # the per-frame arrays keep all frames, the dropped ones marked
+    ov4, err4 = overlap_ratio(pred[4], gt[4])[0], center_error(pred[4], gt[4])[0]
+    np.testing.assert_allclose(d.overlaps, [1, 0, -1, -1, ov4, 1], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(d.errors, [0, center_error(pred[1], gt[1])[0], np.inf, np.inf, err4, 0],
+                               rtol=0, atol=1e-12)
 
     f = score_sequence(pred, gt, invalid="fail")  # pytracking's default: failures for both
     assert f.success[0] == pytest.approx(3 / 6)
     assert f.precision[20] == pytest.approx(3 / 6)
+    np.testing.assert_array_equal(f.errors[[2, 3]], np.inf)
 
-    with pytest.raises(ValueError, match="invalid="):
+    with pytest.raises(ValueError, match="^invalid='nope': expected one of otb, pytracking, fail$"):
         score_sequence(pred, gt, invalid="nope")
+
+
+def test_valid_groundtruth_size_and_position_rules():
+    gt = np.array([
+        [1, 1, 1, 1],  # the smallest valid 1-based box: x, y = 1 pass "all > 0"
+        [10, 10, 0.5, 0.5],  # sub-pixel sizes are still positive
+        [10, 10, 0, 20],  # zero width
+        [10, 10, 20, 0],  # zero height
+        [10, np.nan, 20, 20],  # one NaN
+    ], float)
+    np.testing.assert_array_equal(valid_groundtruth(gt, "otb"), [1, 1, 0, 0, 0])
+    np.testing.assert_array_equal(valid_groundtruth(gt, "pytracking"), [1, 1, 0, 0, 0])
+    np.testing.assert_array_equal(valid_groundtruth(gt, "fail"), [1, 1, 0, 0, 0])
+
+
+def test_leftover_non_finite_prediction_is_a_failure():
+    """A partly-NaN box is not repaired (MATLAB repairs all-NaN rows only); it scores
+    overlap 0 and centre error +inf, not NaN."""
+    gt = np.array([[10, 10, 20, 20]] * 4, float)
+    pred = gt.copy()
+    pred[1] = [np.nan, 10, 20, 20]
+    s = score_sequence(pred, gt)
+    np.testing.assert_array_equal(s.overlaps, [1, 0, 1, 1])
+    np.testing.assert_array_equal(s.errors, [0, np.inf, 0, 0])
+    assert s.n_frames == 4 and s.n_valid == 4 and s.valid.all()
+    assert s.success[0] == 0.75 and s.precision[50] == 0.75
+
+
+def test_sequence_of_one_frame_and_of_no_valid_frame():
+    gt = np.array([[10, 10, 20, 20]], float)
+    one = score_sequence(gt + [50, 0, 0, 0], gt)  # frame 1 := ground truth
+    assert one.auc == pytest.approx(20 / 21) and one.precision20 == 1.0 and one.avg_overlap == 1.0
+    unannotated = np.zeros((3, 4))
+    none = score_sequence(np.array([[1, 1, 5, 5]] * 3, float), unannotated)
+    assert none.n_valid == 0 and none.avg_overlap == 0.0 and none.auc == 0.0
+    with pytest.raises(ValueError, match="^empty sequence$"):
+        score_sequence(np.zeros((0, 4)), np.zeros((0, 4)))
+
+
+def test_curves_with_a_denominator_and_degenerate_lengths():
+    # n_frames is the denominator, not the number of values given
+    assert success_curve([0.6, 0.7], n_frames=4)[10] == 0.5
+    assert precision_curve([3.0, 30.0], n_frames=4)[20] == 0.25
+    np.testing.assert_array_equal(success_curve([]), np.zeros(21))
+    np.testing.assert_array_equal(precision_curve([]), np.zeros(51))
+    assert success_curve([0.9])[0] == 1.0 and precision_curve([0.0])[0] == 1.0
+
+
+def test_single_boxes_and_box_arrays():
+    a, b = [1, 1, 10, 10], [6, 6, 10, 10]
+    ov = overlap_ratio(a, b)  # one box as a 1-D row
+    assert ov.shape == (1,) and ov[0] == pytest.approx(25 / 175)
+    assert center_error(a, b).shape == (1,) and center_error(a, b)[0] == pytest.approx(np.sqrt(50))
+    four = np.array([a, b, a, b], float)  # (4, 4): four boxes, not one row to wrap
+    np.testing.assert_array_equal(overlap_ratio(four, four), np.ones(4))
+    np.testing.assert_array_equal(center_error(four, four[::-1]), [np.sqrt(50)] * 4)
+
+
+_BAD = np.zeros((3, 5))
+_OK = np.zeros((3, 4)) + [1, 1, 5, 5]
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: overlap_ratio(_BAD, _OK), "overlap_ratio(a)"),
+    (lambda: overlap_ratio(_OK, _BAD), "overlap_ratio(b)"),
+    (lambda: center_error(_BAD, _OK), "center_error(a)"),
+    (lambda: center_error(_OK, _BAD), "center_error(b)"),
+    (lambda: valid_groundtruth(_BAD), "groundtruth"),
+    (lambda: repair_predictions(_BAD, _OK), "prediction"),
+    (lambda: repair_predictions(_OK, _BAD), "groundtruth"),
+    (lambda: score_sequence(_BAD, _OK), "prediction"),
+    (lambda: score_sequence(_OK, _BAD), "groundtruth"),
+    (lambda: overlap_ratio(np.zeros((2, 3, 4)), _OK), "overlap_ratio(a)"),
+])
+def test_bad_box_arrays_are_named(call, name):
+    with pytest.raises(ValueError, match="^" + re.escape(name) + r": expected an \(n, 4\) array"):
+        call()
+
+
+def test_shape_mismatch_and_empty_aggregate_are_errors():
+    with pytest.raises(ValueError, match=r"^overlap_ratio: shapes differ, \(3, 4\) vs \(2, 4\)$"):
+        overlap_ratio(_OK, _OK[:2])
+    with pytest.raises(ValueError, match=r"^center_error: shapes differ, \(3, 4\) vs \(2, 4\)$"):
+        center_error(_OK, _OK[:2])
+    with pytest.raises(ValueError, match="^aggregate: no sequences to average$"):
+        aggregate([])
+
+
+def test_zero_size_boxes_give_nan_overlap_without_warnings():
+    """Two empty boxes: 0/0 (NaN, as MATLAB), silently."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ov = overlap_ratio([[5, 5, 0, 0]], [[5, 5, 0, 0]])
+    assert np.isnan(ov[0])
 
 
 def test_length_mismatch_is_an_error():
@@ -277,3 +449,46 @@ def test_aggregate_averages_curves_over_sequences_not_frames():
     agg2 = aggregate([{"success": perfect.success, "precision": perfect.precision},
                       {"success": half.success, "precision": half.precision}])
     assert agg2.auc == agg.auc
+
+
+def test_aggregate_leaves_out_all_zero_curves_like_plotdrawsave():
+    """MATLAB's plotDrawSave: ``aa = aa(sum(aa,2) > eps, :)`` before the mean, per curve."""
+    gt = np.array([[10, 10, 20, 20]] * 4, float)
+    perfect = score_sequence(gt, gt)
+    # frame 1 unannotated (so not replaced by a valid box), the rest missed: the success
+    # curve is all zero; precision is not (invalid frames are hits under "otb")
+    gt_bad = gt.copy()
+    gt_bad[0] = 0
+    empty = score_sequence(np.array([[500, 500, 20, 20]] * 4, float), gt_bad)
+    assert not empty.success.any() and empty.precision[20] == pytest.approx(1 / 4)
+
+    agg = aggregate([perfect, empty])
+    np.testing.assert_array_equal(agg.success, perfect.success)  # the empty curve is left out
+    np.testing.assert_allclose(agg.precision, (perfect.precision + empty.precision) / 2)
+    assert agg.auc == pytest.approx(20 / 21)
+    assert agg.precision20 == pytest.approx((1 + 1 / 4) / 2)
+
+    kept = aggregate([perfect, empty], drop_empty=False)
+    np.testing.assert_allclose(kept.success, perfect.success / 2)
+    assert kept.auc == pytest.approx(10 / 21)
+    # all curves empty: nothing to leave out, the mean is zero
+    assert aggregate([empty, empty]).auc == 0.0
+    # precision curves are left out on their own (here as the dicts of summary.json)
+    no_hits = {"success": perfect.success, "precision": np.zeros(51)}
+    agg = aggregate([perfect, no_hits])
+    np.testing.assert_array_equal(agg.precision, perfect.precision)
+    np.testing.assert_array_equal(agg.success, perfect.success)
+    assert aggregate([perfect, no_hits], drop_empty=False).precision20 == 0.5
+
+
+def test_sequence_score_to_dict_holds_the_scores_as_plain_numbers():
+    gt = np.array([[10, 10, 20, 20]] * 3 + [[0, 0, 0, 0]], float)
+    pred = gt.copy()
+    pred[2] = [14, 10, 20, 20]  # 16 of 20 columns: IoU 320 / 480
+    s = score_sequence(pred, gt)
+    d = s.to_dict()
+    assert d == {"auc": s.auc, "precision20": s.precision20, "avg_overlap": s.avg_overlap,
+                 "n_frames": 4, "n_valid": 3}
+    assert d["avg_overlap"] == pytest.approx((2 + 2 / 3) / 3)
+    assert all(type(v) is float for k, v in d.items() if k not in ("n_frames", "n_valid"))
+    assert type(d["n_frames"]) is int and type(d["n_valid"]) is int

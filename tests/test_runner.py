@@ -427,7 +427,6 @@ def test_dask_local_cluster_equals_sequential(dataset, tmp_path, sequential_run,
 @pytest.mark.slow
 def test_smtmvt_same_boxes_in_process_pool_and_dask(dataset, tmp_path, cluster):
     """Our tracker gets the same per-sequence seed wherever it runs, so the boxes are equal."""
-    pytest.importorskip("smtmvt.tracker")
     common = dict(tracker_options={"smtmvt": {"n_particles": 40}}, max_frames=6, progress=False, report=False)
     here = run_evaluation(dataset, ["smtmvt"], tmp_path / "here", sequences=["SquareB"], **common)
     pool = run_evaluation(dataset, ["smtmvt"], tmp_path / "pool", workers=2, **common)

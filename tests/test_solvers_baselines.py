@@ -8,11 +8,15 @@ import numpy as np
 import pytest
 
 from smtmvt.solvers import SOLVERS, solve_smtmvt
-from smtmvt.solvers.baselines import solve_l1t, solve_mtmvt_lad, solve_mtmvt_ls, solve_mtt
+from smtmvt.solvers.baselines import mtmvt_objective, solve_l1t, solve_mtmvt_lad, solve_mtmvt_ls, solve_mtt
 
+import cvxpy as cp  # a pinned test dependency (requirements-dev.txt): missing means broken
 from solver_instances import make_instance  # noqa: E402
 
-cp = pytest.importorskip("cvxpy")
+
+# Relative gap of our objective to CLARABEL's, measured on the instances below (tol 1e-9):
+# l1t -8.4e-11, mtt -4.9e-11, mtmvt-ls -9.9e-11, mtmvt-lad +2.4e-9. Bounds ~10x those.
+GAP_BELOW, GAP_ABOVE = 1e-9, 3e-8
 
 
 def _solve(prob):
@@ -46,14 +50,14 @@ def test_l1t_matches_cvxpy(inst):
     assert info.converged and np.all(Cs >= 0)
     ours = _score(prob, list(zip(C, Cs)) + list(zip(E, Es)))
     assert ours == pytest.approx(info.objective, rel=1e-10)
-    assert ref * (1 - 1e-7) <= ours <= ref * (1 + 1e-6)
+    assert ref * (1 - GAP_BELOW) <= ours <= ref * (1 + GAP_ABOVE)
 
 
 def test_l1t_is_smtmvt_without_nuclear_norm(inst):
     X, D, *_ = inst
     C1, E1 = solve_l1t(X, D, lam=0.2, tol=1e-10, max_iter=20000)
     C2, E2 = solve_smtmvt(X, D, lam=0.0, gamma=0.2, tol=1e-10, max_iter=20000)
-    assert np.allclose(C1, C2, atol=1e-6)
+    assert np.allclose(C1, C2, rtol=0, atol=1e-7)  # measured 4.0e-9
 
 
 def test_mtt_matches_cvxpy(inst):
@@ -72,7 +76,7 @@ def test_mtt_matches_cvxpy(inst):
     assert info.converged
     ours = _score(prob, list(zip(C, Cs)) + list(zip(E, Es)))
     assert ours == pytest.approx(info.objective, rel=1e-10)
-    assert ref * (1 - 1e-7) <= ours <= ref * (1 + 1e-6)
+    assert ref * (1 - GAP_BELOW) <= ours <= ref * (1 + GAP_ABOVE)
     # joint sparsity: whole template rows switch off together across candidates
     row_norms = np.linalg.norm(Cs, axis=2)
     assert np.all((row_norms == 0) | (row_norms > 1e-6))
@@ -118,7 +122,7 @@ def test_mtmvt_matches_cvxpy(shared_and_outlier, loss):
     assert all(np.all(e == 0) for e in Es)
     ours = _score(prob, list(zip(P, Ps)) + list(zip(Q, Qs)))
     assert ours == pytest.approx(info.objective, rel=1e-10)
-    assert ref * (1 - 1e-6) <= ours <= ref * (1 + 1e-6)
+    assert ref * (1 - GAP_BELOW) <= ours <= ref * (1 + GAP_ABOVE)
 
 
 def test_registry_calling_convention(inst):
@@ -130,8 +134,35 @@ def test_registry_calling_convention(inst):
         assert [e.shape for e in E] == [x.shape for x in X], name
 
 
+@pytest.mark.parametrize("name", ["l1t", "mtt", "mtmvt-ls", "mtmvt-lad"])
+def test_iteration_cap_and_info(inst, name):
+    """max_iter=1 is allowed and honoured; info names the model and holds numbers."""
+    X, D, *_ = inst
+    solver = SOLVERS[name]
+    _, _, info = solver(X, D, max_iter=1, return_info=True)
+    assert info.iterations == 1 and info.converged is False
+    _, _, info = solver(X, D, max_iter=3, return_info=True)
+    assert info.iterations == 3 and info.converged is False and info.method == name
+    for value in (info.primal_residual, info.dual_residual, info.rho, info.objective):
+        assert type(value) is float and np.isfinite(value) and value > 0
+    _, _, info = solver(X, D, tol=1e-2, max_iter=5000, return_info=True)
+    assert info.converged is True and 3 < info.iterations < 5000
+
+
+def test_mtmvt_objective_loss():
+    X, D = make_instance(32, K=2, N=3, n=4)
+    rng = np.random.default_rng(0)
+    P, Q = rng.standard_normal((2, 3, 4)), rng.standard_normal((2, 3, 4))
+    ls = mtmvt_objective(X, D, P, Q, 0.2, 0.1, loss="ls")
+    assert mtmvt_objective(X, D, P, Q, 0.2, 0.1) == ls  # least squares by default
+    assert mtmvt_objective(X, D, P, Q, 0.2, 0.1, loss="lad") != ls
+    with pytest.raises(ValueError, match="^loss must be 'ls' or 'lad', got 'l2'$"):
+        mtmvt_objective(X, D, P, Q, 0.2, 0.1, loss="l2")
+
+
 @pytest.mark.parametrize("solver, kwargs, name", [
     (solve_l1t, dict(lam=-1), "lam"),
+    (solve_mtmvt_lad, dict(lam_p=-1), "lam_p"),
     (solve_mtt, dict(tol=0), "tol"),
     (solve_mtmvt_ls, dict(lam_q=-0.1), "lam_q"),
     (solve_mtmvt_lad, dict(max_iter=0), "max_iter"),
