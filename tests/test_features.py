@@ -41,7 +41,7 @@ def _crops(image, size, count, rng):
     h, w = size
     rows = rng.integers(0, image.shape[0] - h, count)
     cols = rng.integers(0, image.shape[1] - w, count)
-    return np.stack([image[r:r + h, c:c + w] for r, c in zip(rows, cols)]).astype(np.float32)
+    return np.stack([image[r : r + h, c : c + w] for r, c in zip(rows, cols)]).astype(np.float32)
 
 
 @pytest.fixture(scope="module")
@@ -62,8 +62,9 @@ def gray_patches(camera, camera_tt):
 
 
 def _skimage_hog(patch):
-    return sk_hog(patch, orientations=9, pixels_per_cell=(8, 8), cells_per_block=(2, 2),
-                  block_norm="L2-Hys", feature_vector=True)
+    return sk_hog(
+        patch, orientations=9, pixels_per_cell=(8, 8), cells_per_block=(2, 2), block_norm="L2-Hys", feature_vector=True
+    )
 
 
 def _skimage_lbp(patch, P=8, R=1):
@@ -81,6 +82,7 @@ def _make_patches(n, rng, th=20, tw=20, size=32, channels=3):
 
 
 # --------------------------------------------------------------------------- HOG
+
 
 def test_hog_matches_skimage(gray_patches):
     ours = hog_descriptors(gray_patches)
@@ -103,21 +105,26 @@ def _skimage_bins(g_row, g_col, orientations):
     """skimage's binning, verbatim: float64 orientation, float32-rounded edges
     (``orientations`` = no bin, for an angle that rounds to exactly 180)."""
     orientation = np.rad2deg(np.arctan2(g_row.astype(np.float64), g_col.astype(np.float64))) % 180
-    edges = np.array([np.float32(180.0 / orientations * i) for i in range(orientations + 1)],
-                     dtype=np.float64)
+    edges = np.array([np.float32(180.0 / orientations * i) for i in range(orientations + 1)], dtype=np.float64)
     return np.searchsorted(edges, orientation, side="right") - 1
 
 
 def test_hog_orientation_bins_equal_skimage_float64_binning():
     rng = np.random.default_rng(3)
-    g_row = np.concatenate([
-        rng.integers(-4, 5, 200_000), rng.standard_normal(200_000),
-        [-1e-30, 1e-30, 0.0, -0.0, 0.0, 1.0, -1.0],
-    ]).astype(np.float32)
-    g_col = np.concatenate([
-        rng.integers(-4, 5, 200_000), rng.standard_normal(200_000),
-        [1.0, -1.0, -1.0, -1.0, 0.0, 0.0, 0.0],
-    ]).astype(np.float32)
+    g_row = np.concatenate(
+        [
+            rng.integers(-4, 5, 200_000),
+            rng.standard_normal(200_000),
+            [-1e-30, 1e-30, 0.0, -0.0, 0.0, 1.0, -1.0],
+        ]
+    ).astype(np.float32)
+    g_col = np.concatenate(
+        [
+            rng.integers(-4, 5, 200_000),
+            rng.standard_normal(200_000),
+            [1.0, -1.0, -1.0, -1.0, 0.0, 0.0, 0.0],
+        ]
+    ).astype(np.float32)
     exact = _skimage_bins(g_row, g_col, 9)
     assert_array_equal(orientation_bins(g_row, g_col, 9), exact)
     # gradients on the bin edges themselves (the atan2 fallback), float64 too
@@ -136,6 +143,7 @@ def test_hog_rejects_too_small_patches():
 
 
 # --------------------------------------------------------------------------- LBP
+
 
 def test_lbp_codes_equal_skimage(gray_patches):
     ours = lbp_codes(gray_patches)
@@ -161,7 +169,7 @@ def test_lbp_histograms_equal_ones_from_skimage_codes(gray_patches, grid):
     for i in range(n):
         for a in range(grid):
             for b in range(grid):
-                cell = codes[i, bounds_r[a]:bounds_r[a + 1], bounds_c[b]:bounds_c[b + 1]]
+                cell = codes[i, bounds_r[a] : bounds_r[a + 1], bounds_c[b] : bounds_c[b + 1]]
                 ref[i, a, b] = np.bincount(cell.ravel(), minlength=10) / cell.size
     ours = lbp_histograms(lbp_codes(gray_patches), 10, grid)
     assert ours.shape == (n, grid * grid * 10)
@@ -182,14 +190,14 @@ def test_hog_and_lbp_views_on_the_raw_gray_plane(gray_patches):
 
 
 def test_lbp_view_is_4x4_grid_of_10_codes(gray_patches):
-    patches = Patches(gray_patches[:, :20, :20], gray_patches,
-                      np.zeros(gray_patches.shape + (3,), np.float32))
+    patches = Patches(gray_patches[:, :20, :20], gray_patches, np.zeros(gray_patches.shape + (3,), np.float32))
     out = lbp_view(patches)
     assert out.shape == (len(gray_patches), 160)
     assert_allclose(out.reshape(-1, 16, 10).sum(axis=2), 1.0, atol=1e-6)
 
 
 # --------------------------------------------------------------------------- Tan-Triggs
+
 
 def _tan_triggs_reference(image01, gamma=0.2, s0=1.0, s1=2.0, alpha=0.1, tau=10.0):
     """Direct float64 transcription of Tan & Triggs (2010) with scipy filters."""
@@ -225,8 +233,12 @@ def test_tan_triggs_invariant_to_input_scale(camera):
 
 
 def test_tan_triggs_constant_image_gives_zeros():
-    for image in (np.full((30, 40), 77, np.uint8), np.full((30, 40), 0.37),
-                  np.zeros((30, 40), np.float32), np.full((30, 40), 65535, np.uint16)):
+    for image in (
+        np.full((30, 40), 77, np.uint8),
+        np.full((30, 40), 0.37),
+        np.zeros((30, 40), np.float32),
+        np.full((30, 40), 65535, np.uint16),
+    ):
         out = tan_triggs(image)
         assert not np.isnan(out).any()
         assert_array_equal(out, 0)
@@ -256,8 +268,9 @@ def test_tan_triggs_removes_smooth_illumination_gradient(camera):
 
 def test_difference_of_gaussians_matches_scipy(camera):
     x = np.power(camera / 255.0, 0.2).astype(np.float32)
-    ref = ndi.gaussian_filter(x.astype(np.float64), 1.0, mode="reflect") \
-        - ndi.gaussian_filter(x.astype(np.float64), 2.0, mode="reflect")
+    ref = ndi.gaussian_filter(x.astype(np.float64), 1.0, mode="reflect") - ndi.gaussian_filter(
+        x.astype(np.float64), 2.0, mode="reflect"
+    )
     assert_allclose(difference_of_gaussians(x, 1.0, 2.0), ref, rtol=0, atol=2e-6)
     ref0 = x - ndi.gaussian_filter(x.astype(np.float64), 2.0, mode="reflect")
     assert_allclose(difference_of_gaussians(x, 0.0, 2.0), ref0, rtol=0, atol=2e-6)
@@ -274,6 +287,7 @@ def test_tan_triggs_rejects_bad_input():
 
 # --------------------------------------------------------------------------- color
 
+
 def test_color_histogram_channels_sum_to_one():
     colors = np.random.default_rng(6).random((5, 32, 32, 3)).astype(np.float32)
     hist = color_histograms(colors)
@@ -284,9 +298,9 @@ def test_color_histogram_channels_sum_to_one():
 
 def test_color_histogram_soft_binning():
     colors = np.empty((1, 4, 4, 3), np.float32)
-    colors[..., 0] = 2.5 / 16   # centre of bin 2: all mass in bin 2
-    colors[..., 1] = 3.0 / 16   # half-way between the centres of bins 2 and 3
-    colors[..., 2] = 1.0        # beyond the last centre: all in bin 15
+    colors[..., 0] = 2.5 / 16  # centre of bin 2: all mass in bin 2
+    colors[..., 1] = 3.0 / 16  # half-way between the centres of bins 2 and 3
+    colors[..., 2] = 1.0  # beyond the last centre: all in bin 15
     hist = color_histograms(colors).reshape(3, 16)
     expected = np.zeros((3, 16))
     expected[0, 2] = 1.0
@@ -342,6 +356,7 @@ def test_color_values_outside_unit_range_are_clipped():
 
 # --------------------------------------------------------------------------- extract_views
 
+
 def test_available_views_default_order():
     assert available_views()[:4] == ("intensity", "color", "hog", "lbp")
 
@@ -370,7 +385,7 @@ def test_extract_views_constant_patches_have_no_nan():
     for X in out.values():
         assert not np.isnan(X).any()
     assert_array_equal(out["intensity"], 0)  # constant template -> zero column
-    assert_array_equal(out["hog"], 0)        # no gradient anywhere
+    assert_array_equal(out["hog"], 0)  # no gradient anywhere
     # constant colour: one bin per channel, still a proper (non-constant) column
     assert_allclose(np.linalg.norm(out["color"], axis=0), 1.0, atol=1e-5)
 
@@ -427,6 +442,7 @@ def test_registry_unchanged_by_register_view_test():
 
 # --------------------------------------------------------------------------- Patches
 
+
 def test_patches_validation():
     rng = np.random.default_rng(13)
     ok = _make_patches(3, rng)
@@ -447,6 +463,7 @@ def test_patches_validation():
 
 
 # --------------------------------------------------------------------------- normalize_columns
+
 
 def test_normalize_columns_basic():
     V = np.array([[1.0, 3.0], [2.0, 3.0], [3.0, 3.0], [6.0, 3.0]])
@@ -479,16 +496,20 @@ def test_normalize_columns_keeps_tiny_real_variation():
 
 # --------------------------------------------------------------------------- intensity
 
-@pytest.mark.parametrize("w,h,expected", [
-    (60, 90, (30, 20)),    # shorter side >= 20: one third
-    (20, 40, (13, 7)),     # shorter side exactly 20: one third (20/3 = 6.67 -> 7)
-    (45, 33, (11, 15)),
-    (21, 22.5, (8, 7)),    # 7.5 rounds up
-    (19, 40, (20, 10)),    # shorter side < 20: one half (9.5 rounds up)
-    (10, 12, (6, 5)),
-    (6, 5, (4, 4)),        # floor of 4 px per side
-    (40, 7, (4, 20)),
-])
+
+@pytest.mark.parametrize(
+    "w,h,expected",
+    [
+        (60, 90, (30, 20)),  # shorter side >= 20: one third
+        (20, 40, (13, 7)),  # shorter side exactly 20: one third (20/3 = 6.67 -> 7)
+        (45, 33, (11, 15)),
+        (21, 22.5, (8, 7)),  # 7.5 rounds up
+        (19, 40, (20, 10)),  # shorter side < 20: one half (9.5 rounds up)
+        (10, 12, (6, 5)),
+        (6, 5, (4, 4)),  # floor of 4 px per side
+        (40, 7, (4, 20)),
+    ],
+)
 def test_intensity_template_size(w, h, expected):
     assert intensity_template_size(w, h) == expected
 

@@ -10,8 +10,9 @@ from smtmvt.warp import inside_fraction, sampling_grid, warp_patches
 
 def test_box_affine_roundtrip():
     rng = np.random.default_rng(0)
-    boxes = np.column_stack([rng.uniform(-20, 300, 50), rng.uniform(-20, 200, 50),
-                             rng.uniform(2, 150, 50), rng.uniform(2, 150, 50)])
+    boxes = np.column_stack(
+        [rng.uniform(-20, 300, 50), rng.uniform(-20, 200, 50), rng.uniform(2, 150, 50), rng.uniform(2, 150, 50)]
+    )
     np.testing.assert_allclose(affine_to_box(box_to_affine(boxes)), boxes, atol=1e-12)
     np.testing.assert_allclose(affine_to_box(box_to_affine(boxes[0])), boxes[0], atol=1e-12)
 
@@ -38,12 +39,15 @@ def _warp_affine_reference(img, p, size):
     a11, a12, a21, a22, tx, ty = p
     su, sv = REF / pw, REF / ph
     # u = (j + 0.5) * su - REF/2, v = (i + 0.5) * sv - REF/2
-    M = np.array([
-        [a11 * su, a12 * sv, a11 * (0.5 * su - REF / 2) + a12 * (0.5 * sv - REF / 2) + tx],
-        [a21 * su, a22 * sv, a21 * (0.5 * su - REF / 2) + a22 * (0.5 * sv - REF / 2) + ty],
-    ])
-    return cv2.warpAffine(img, M, (pw, ph), flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP,
-                          borderMode=cv2.BORDER_REPLICATE)
+    M = np.array(
+        [
+            [a11 * su, a12 * sv, a11 * (0.5 * su - REF / 2) + a12 * (0.5 * sv - REF / 2) + tx],
+            [a21 * su, a22 * sv, a21 * (0.5 * su - REF / 2) + a22 * (0.5 * sv - REF / 2) + ty],
+        ]
+    )
+    return cv2.warpAffine(
+        img, M, (pw, ph), flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP, borderMode=cv2.BORDER_REPLICATE
+    )
 
 
 @pytest.mark.parametrize("channels", [None, 3])
@@ -103,18 +107,20 @@ def test_inside_fraction_edges_are_inclusive_on_all_four_sides(channels):
     box at size (10, 10) samples the points x + 0..9, y + 0..9. The image is not square,
     so W and H cannot be swapped."""
     shape = (40, 60) + channels  # H = 40, W = 60
-    boxes = np.array([
-        [-0.5, 5, 10, 10],  # first column on the left edge
-        [50.5, 5, 10, 10],  # last column on the right edge, x = W - 0.5
-        [5, -0.5, 10, 10],  # top edge
-        [5, 30.5, 10, 10],  # last row on the bottom edge, y = H - 0.5
-        [-0.75, 5, 10, 10],  # one column a quarter pixel beyond each edge
-        [50.75, 5, 10, 10],
-        [5, -0.75, 10, 10],
-        [5, 30.75, 10, 10],
-        [45.5, 25.5, 10, 10],  # inside, 5 px from the right and bottom edges
-        [55.5, 35.5, 10, 10],  # 5 columns x 5 rows inside
-    ])
+    boxes = np.array(
+        [
+            [-0.5, 5, 10, 10],  # first column on the left edge
+            [50.5, 5, 10, 10],  # last column on the right edge, x = W - 0.5
+            [5, -0.5, 10, 10],  # top edge
+            [5, 30.5, 10, 10],  # last row on the bottom edge, y = H - 0.5
+            [-0.75, 5, 10, 10],  # one column a quarter pixel beyond each edge
+            [50.75, 5, 10, 10],
+            [5, -0.75, 10, 10],
+            [5, 30.75, 10, 10],
+            [45.5, 25.5, 10, 10],  # inside, 5 px from the right and bottom edges
+            [55.5, 35.5, 10, 10],  # 5 columns x 5 rows inside
+        ]
+    )
     f = inside_fraction(box_to_affine(boxes), shape, size=(10, 10))
     np.testing.assert_allclose(f, [1, 1, 1, 1, 0.9, 0.9, 0.9, 0.9, 1, 0.25], rtol=0, atol=1e-12)
 

@@ -5,13 +5,12 @@ from __future__ import annotations
 import re
 import warnings
 
-import numpy as np
-import pytest
-
 # got10k is a pinned test dependency (requirements-dev.txt): imported, not skipped when missing.
 # Its ExperimentOTB computes the OTB curves (the module imports six, also pinned).
 import got10k.experiments.otb as got10k_otb
 import got10k.utils.metrics as got10k_metrics
+import numpy as np
+import pytest
 
 from smtmvt.evaluation.metrics import (
     PRECISION_THRESHOLDS,
@@ -26,7 +25,6 @@ from smtmvt.evaluation.metrics import (
     valid_groundtruth,
 )
 from smtmvt.evaluation.published import read_box_file
-
 
 # ----------------------------------------------------------------------------- helpers
 
@@ -229,13 +227,15 @@ def test_frame_one_is_replaced_by_groundtruth():
 
 def test_nan_and_zero_size_predictions_take_previous_box():
     gt = np.array([[10, 10, 20, 20]] * 5, float)
-    pred = np.array([
-        [10, 10, 20, 20],
-        [12, 10, 20, 20],
-        [np.nan, np.nan, np.nan, np.nan],  # -> frame 2's box
-        [50, 50, 0, 20],  # zero width -> frame 3's (repaired) box
-        [10, 10, 20, 20],
-    ])
+    pred = np.array(
+        [
+            [10, 10, 20, 20],
+            [12, 10, 20, 20],
+            [np.nan, np.nan, np.nan, np.nan],  # -> frame 2's box
+            [50, 50, 0, 20],  # zero width -> frame 3's (repaired) box
+            [10, 10, 20, 20],
+        ]
+    )
     fixed = repair_predictions(pred, gt)
     np.testing.assert_array_equal(fixed[2], pred[1])
     np.testing.assert_array_equal(fixed[3], pred[1])
@@ -252,13 +252,15 @@ def test_no_repair_where_the_groundtruth_has_nan():
     is then what the next bad frame copies, so that frame fails too."""
     gt = np.array([[10, 10, 20, 20]] * 5, float)
     gt[2, 1] = np.nan  # one NaN number is enough to block the repair
-    pred = np.array([
-        [10, 10, 20, 20],
-        [12, 10, 20, 20],
-        [np.nan] * 4,  # gt has NaN: stays NaN
-        [50, 50, 0, 20],  # zero width, gt fine: takes frame 2's box, which is NaN
-        [10, 10, 20, 20],
-    ])
+    pred = np.array(
+        [
+            [10, 10, 20, 20],
+            [12, 10, 20, 20],
+            [np.nan] * 4,  # gt has NaN: stays NaN
+            [50, 50, 0, 20],  # zero width, gt fine: takes frame 2's box, which is NaN
+            [10, 10, 20, 20],
+        ]
+    )
     fixed = repair_predictions(pred, gt)
     assert np.isnan(fixed[2]).all() and np.isnan(fixed[3]).all()
     np.testing.assert_array_equal(fixed, matlab_repair_loop(pred, gt))
@@ -291,14 +293,17 @@ def test_repair_equals_matlab_loop_on_random_sequences():
 
 
 def test_invalid_groundtruth_otb_rule():
-    gt = np.array([
-        [10, 10, 20, 20],
-        [10, 10, 20, 20],
-        [0, 0, 0, 0],  # unannotated (Board, Twinnings)
-        [np.nan] * 4,
-        [-3, 10, 20, 20],  # y <= 0: MATLAB's sum(rect_anno > 0, 2) == 4 rejects it too (Biker)
-        [10, 10, 20, 20],
-    ], float)
+    gt = np.array(
+        [
+            [10, 10, 20, 20],
+            [10, 10, 20, 20],
+            [0, 0, 0, 0],  # unannotated (Board, Twinnings)
+            [np.nan] * 4,
+            [-3, 10, 20, 20],  # y <= 0: MATLAB's sum(rect_anno > 0, 2) == 4 rejects it too (Biker)
+            [10, 10, 20, 20],
+        ],
+        float,
+    )
     pred = np.array([[10, 10, 20, 20]] * 6, float)
     pred[1] = [200, 200, 20, 20]  # a miss on a valid frame
     np.testing.assert_array_equal(valid_groundtruth(gt, "otb"), [1, 1, 0, 0, 0, 1])
@@ -322,8 +327,9 @@ def test_invalid_groundtruth_otb_rule():
     # the per-frame arrays keep all frames, the dropped ones marked
     ov4, err4 = overlap_ratio(pred[4], gt[4])[0], center_error(pred[4], gt[4])[0]
     np.testing.assert_allclose(d.overlaps, [1, 0, -1, -1, ov4, 1], rtol=0, atol=1e-15)
-    np.testing.assert_allclose(d.errors, [0, center_error(pred[1], gt[1])[0], np.inf, np.inf, err4, 0],
-                               rtol=0, atol=1e-12)
+    np.testing.assert_allclose(
+        d.errors, [0, center_error(pred[1], gt[1])[0], np.inf, np.inf, err4, 0], rtol=0, atol=1e-12
+    )
 
     f = score_sequence(pred, gt, invalid="fail")  # pytracking's default: failures for both
     assert f.success[0] == pytest.approx(3 / 6)
@@ -335,13 +341,16 @@ def test_invalid_groundtruth_otb_rule():
 
 
 def test_valid_groundtruth_size_and_position_rules():
-    gt = np.array([
-        [1, 1, 1, 1],  # the smallest valid 1-based box: x, y = 1 pass "all > 0"
-        [10, 10, 0.5, 0.5],  # sub-pixel sizes are still positive
-        [10, 10, 0, 20],  # zero width
-        [10, 10, 20, 0],  # zero height
-        [10, np.nan, 20, 20],  # one NaN
-    ], float)
+    gt = np.array(
+        [
+            [1, 1, 1, 1],  # the smallest valid 1-based box: x, y = 1 pass "all > 0"
+            [10, 10, 0.5, 0.5],  # sub-pixel sizes are still positive
+            [10, 10, 0, 20],  # zero width
+            [10, 10, 20, 0],  # zero height
+            [10, np.nan, 20, 20],  # one NaN
+        ],
+        float,
+    )
     np.testing.assert_array_equal(valid_groundtruth(gt, "otb"), [1, 1, 0, 0, 0])
     np.testing.assert_array_equal(valid_groundtruth(gt, "pytracking"), [1, 1, 0, 0, 0])
     np.testing.assert_array_equal(valid_groundtruth(gt, "fail"), [1, 1, 0, 0, 0])
@@ -394,18 +403,21 @@ _BAD = np.zeros((3, 5))
 _OK = np.zeros((3, 4)) + [1, 1, 5, 5]
 
 
-@pytest.mark.parametrize("call, name", [
-    (lambda: overlap_ratio(_BAD, _OK), "overlap_ratio(a)"),
-    (lambda: overlap_ratio(_OK, _BAD), "overlap_ratio(b)"),
-    (lambda: center_error(_BAD, _OK), "center_error(a)"),
-    (lambda: center_error(_OK, _BAD), "center_error(b)"),
-    (lambda: valid_groundtruth(_BAD), "groundtruth"),
-    (lambda: repair_predictions(_BAD, _OK), "prediction"),
-    (lambda: repair_predictions(_OK, _BAD), "groundtruth"),
-    (lambda: score_sequence(_BAD, _OK), "prediction"),
-    (lambda: score_sequence(_OK, _BAD), "groundtruth"),
-    (lambda: overlap_ratio(np.zeros((2, 3, 4)), _OK), "overlap_ratio(a)"),
-])
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda: overlap_ratio(_BAD, _OK), "overlap_ratio(a)"),
+        (lambda: overlap_ratio(_OK, _BAD), "overlap_ratio(b)"),
+        (lambda: center_error(_BAD, _OK), "center_error(a)"),
+        (lambda: center_error(_OK, _BAD), "center_error(b)"),
+        (lambda: valid_groundtruth(_BAD), "groundtruth"),
+        (lambda: repair_predictions(_BAD, _OK), "prediction"),
+        (lambda: repair_predictions(_OK, _BAD), "groundtruth"),
+        (lambda: score_sequence(_BAD, _OK), "prediction"),
+        (lambda: score_sequence(_OK, _BAD), "groundtruth"),
+        (lambda: overlap_ratio(np.zeros((2, 3, 4)), _OK), "overlap_ratio(a)"),
+    ],
+)
 def test_bad_box_arrays_are_named(call, name):
     with pytest.raises(ValueError, match="^" + re.escape(name) + r": expected an \(n, 4\) array"):
         call()
@@ -446,8 +458,12 @@ def test_aggregate_averages_curves_over_sequences_not_frames():
     assert agg.auc == pytest.approx((perfect.auc + half.auc) / 2)
     assert agg.precision20 == pytest.approx((1.0 + 0.5) / 2)
     # dicts work too (what summary.json stores)
-    agg2 = aggregate([{"success": perfect.success, "precision": perfect.precision},
-                      {"success": half.success, "precision": half.precision}])
+    agg2 = aggregate(
+        [
+            {"success": perfect.success, "precision": perfect.precision},
+            {"success": half.success, "precision": half.precision},
+        ]
+    )
     assert agg2.auc == agg.auc
 
 
@@ -487,8 +503,7 @@ def test_sequence_score_to_dict_holds_the_scores_as_plain_numbers():
     pred[2] = [14, 10, 20, 20]  # 16 of 20 columns: IoU 320 / 480
     s = score_sequence(pred, gt)
     d = s.to_dict()
-    assert d == {"auc": s.auc, "precision20": s.precision20, "avg_overlap": s.avg_overlap,
-                 "n_frames": 4, "n_valid": 3}
+    assert d == {"auc": s.auc, "precision20": s.precision20, "avg_overlap": s.avg_overlap, "n_frames": 4, "n_valid": 3}
     assert d["avg_overlap"] == pytest.approx((2 + 2 / 3) / 3)
     assert all(type(v) is float for k, v in d.items() if k not in ("n_frames", "n_valid"))
     assert type(d["n_frames"]) is int and type(d["n_valid"]) is int

@@ -2,6 +2,7 @@
 
 import re
 
+import cvxpy as cp  # a pinned test dependency (requirements-dev.txt): missing means broken
 import numpy as np
 import pytest
 
@@ -12,9 +13,7 @@ from smtmvt.solvers import (
     smtmvt_objective,
     solve_smtmvt,
 )
-
-import cvxpy as cp  # a pinned test dependency (requirements-dev.txt): missing means broken
-from solver_instances import make_instance  # noqa: E402
+from solver_instances import make_instance
 
 
 # ---------------------------------------------------------------- helpers
@@ -170,8 +169,9 @@ def test_paper_method_feasible_and_not_below_optimum(lam):
 def _paper_step_by_hand(X, D, C, E, lam, gamma):
     """One step of the paper's iteration written from its formulas (module docstring
     of smtmvt.solvers.smtmvt), with L from the eigenvalues of the Hessian."""
-    L = max(np.linalg.eigvalsh(2 * np.hstack([Dk, np.eye(len(Dk))]).T @ np.hstack([Dk, np.eye(len(Dk))])).max()
-            for Dk in D)
+    L = max(
+        np.linalg.eigvalsh(2 * np.hstack([Dk, np.eye(len(Dk))]).T @ np.hstack([Dk, np.eye(len(Dk))])).max() for Dk in D
+    )
     sigma = 1.0 / L
     K, N, n = C.shape
     R = [X[k] - D[k] @ C[k] - E[k] for k in range(K)]
@@ -198,8 +198,7 @@ def test_paper_method_takes_the_papers_step():
     E0 = [0.05 * rng.standard_normal(x.shape) for x in X]
     C_ref, E_ref = _paper_step_by_hand(X, D, C0, E0, 0.3, 0.25)
     assert 0 < np.mean(C_ref == 0) < 0.5 and 0 < np.mean(E_ref[0] == 0) < 1  # both projections act
-    C1, E1, info = solve_smtmvt(X, D, lam=0.3, gamma=0.25, method="paper", C0=C0, E0=E0, max_iter=1,
-                                return_info=True)
+    C1, E1, info = solve_smtmvt(X, D, lam=0.3, gamma=0.25, method="paper", C0=C0, E0=E0, max_iter=1, return_info=True)
     assert info.iterations == 1
     np.testing.assert_allclose(C1, C_ref, rtol=0, atol=1e-12)
     for k in range(3):
@@ -250,15 +249,14 @@ def test_warm_start_is_used():
     assert paper5.objective - opt.objective < 0.1 * (paper5_cold.objective - opt.objective)
 
 
-@pytest.mark.xfail(strict=True, reason="bug in src/smtmvt/solvers/smtmvt.py:301: the off-support U2 estimate "
-                   "takes -D'U_R/beta where the C step's fixed point needs +D'U_R/beta (reported, not fixed here)")
 @pytest.mark.parametrize("seed", [3, 4])
 def test_admm_warm_start_at_an_optimum_is_a_fixed_point(seed):
     """The docstring: the duals estimated from (C0, E0) are exact at an optimum whose
     Pi_i(C) have no singular values below 1e-6 s_max. On such an optimum (with some
     C = 0 entries, so that the off-support branch of U2 is used) one iteration must
-    stay put and meet the stopping rule. Measured with the sign corrected: C moves
-    by 1.3e-12 and 2.1e-12 (bound 1e-10); as written it moves by 0.054 and 0.040."""
+    stay put and meet the stopping rule. Measured: C moves by 1.3e-12 and 2.1e-12
+    (bound 1e-10); with the off-support U2 taking -D'U_R/beta (the sign before the
+    fix) it moved by 0.054 and 0.040."""
     X, D = make_instance(seed, n=6)
     C, E, opt = solve_smtmvt(X, D, lam=0.1, tol=1e-12, max_iter=100000, return_info=True)
     sv = np.linalg.svd(C.transpose(2, 1, 0), compute_uv=False)
@@ -281,7 +279,7 @@ def test_paper_method_stopping_rule_is_the_relative_change():
         assert info.iterations == k and info.converged is False and np.isnan(info.dual_residual)
         Cp, Ep = states[-1]
         step = np.sqrt(np.sum((C - Cp) ** 2) + sum(np.sum((a - b) ** 2) for a, b in zip(E, Ep)))
-        size = np.sqrt(np.sum(C ** 2) + sum(np.sum(a ** 2) for a in E))
+        size = np.sqrt(np.sum(C**2) + sum(np.sum(a**2) for a in E))
         changes.append(step / size)
         assert info.primal_residual == pytest.approx(changes[-1], rel=1e-9)
         states.append((C, E))
@@ -334,7 +332,10 @@ def test_lipschitz_constant_bounds_the_gradient():
     """L = 2 max_k(||D^k||^2 + 1) is attained by the Hessian 2 [D, I]'[D, I]."""
     _, D = make_instance(14, K=2)
     L = lipschitz_constant(D)
-    Hmax = max(np.linalg.eigvalsh(2 * np.hstack([Dk, np.eye(Dk.shape[0])]).T @ np.hstack([Dk, np.eye(Dk.shape[0])])).max() for Dk in D)
+    Hmax = max(
+        np.linalg.eigvalsh(2 * np.hstack([Dk, np.eye(Dk.shape[0])]).T @ np.hstack([Dk, np.eye(Dk.shape[0])])).max()
+        for Dk in D
+    )
     assert L == pytest.approx(Hmax, rel=1e-10)
 
 
@@ -424,17 +425,32 @@ def _infinite_E0(X):
 _INPUT_ERRORS = [
     (lambda X, D: X.__setitem__(slice(None), [5.0]), None, "X[0] must be 2-D, got shape ()"),
     (lambda X, D: _set(X, 1, lambda x: x[..., None]), None, "X[1] must be 2-D, got shape "),
-    (lambda X, D: _set(D, 2, lambda d: d.astype(complex)), None,
-     "D[2] must be a real float or integer array, got dtype complex128"),
-    (lambda X, D: _set(X, 2, lambda x: x[:, :-1]), None,
-     "X[2] has 3 columns (candidates) but X[0] has 4: every view must hold the same n candidates"),
-    (lambda X, D: _set(D, 1, lambda d: d[:, :-1]), None,
-     "D[1] has 4 columns (templates) but D[0] has 5: every view must hold the same N templates"),
+    (
+        lambda X, D: _set(D, 2, lambda d: d.astype(complex)),
+        None,
+        "D[2] must be a real float or integer array, got dtype complex128",
+    ),
+    (
+        lambda X, D: _set(X, 2, lambda x: x[:, :-1]),
+        None,
+        "X[2] has 3 columns (candidates) but X[0] has 4: every view must hold the same n candidates",
+    ),
+    (
+        lambda X, D: _set(D, 1, lambda d: d[:, :-1]),
+        None,
+        "D[1] has 4 columns (templates) but D[0] has 5: every view must hold the same N templates",
+    ),
     (lambda X, D: (_set(X, 0, lambda x: x[:0]), _set(D, 0, lambda d: d[:0])), None, "X[0] has zero rows (d_k = 0)"),
-    (lambda X, D: X.__setitem__(slice(None), [x[:, :0] for x in X]), None,
-     "X has zero columns: there must be at least one candidate"),
-    (lambda X, D: D.__setitem__(slice(None), [d[:, :0] for d in D]), None,
-     "D has zero columns: there must be at least one template"),
+    (
+        lambda X, D: X.__setitem__(slice(None), [x[:, :0] for x in X]),
+        None,
+        "X has zero columns: there must be at least one candidate",
+    ),
+    (
+        lambda X, D: D.__setitem__(slice(None), [d[:, :0] for d in D]),
+        None,
+        "D has zero columns: there must be at least one template",
+    ),
     (None, lambda X: dict(lam="big"), "lam must be a number, got 'big'"),
     (None, lambda X: dict(C0=np.full((3, 5, 4), np.nan)), "C0 contains NaN or infinite values"),
     (None, lambda X: dict(C0=np.zeros((3, 5, 4)), E0=5), "E0 must be a list of K arrays shaped like X"),
@@ -454,8 +470,12 @@ def test_input_errors_name_the_argument_and_the_sizes():
     X, D = make_instance(15)
     with pytest.raises(ValueError, match=re.escape("X must be a list of K 2-D arrays, got float")):
         solve_smtmvt(5.0, D)
-    with pytest.raises(ValueError, match=re.escape(
-            "D must be a list of K 2-D arrays (one per view), got a single 2-D array; wrap it as [D] for one view")):
+    with pytest.raises(
+        ValueError,
+        match=re.escape(
+            "D must be a list of K 2-D arrays (one per view), got a single 2-D array; wrap it as [D] for one view"
+        ),
+    ):
         solve_smtmvt(X, D[0])
     with pytest.raises(ValueError, match="^" + re.escape("X must hold at least one view, got an empty sequence")):
         solve_smtmvt([], [])

@@ -4,15 +4,13 @@ For each model the cvxpy problem is written independently from the package;
 the package's solution is scored by cvxpy's own objective expression.
 """
 
+import cvxpy as cp  # a pinned test dependency (requirements-dev.txt): missing means broken
 import numpy as np
 import pytest
 
 from smtmvt.solvers import SOLVERS, solve_smtmvt
 from smtmvt.solvers.baselines import mtmvt_objective, solve_l1t, solve_mtmvt_lad, solve_mtmvt_ls, solve_mtt
-
-import cvxpy as cp  # a pinned test dependency (requirements-dev.txt): missing means broken
-from solver_instances import make_instance  # noqa: E402
-
+from solver_instances import make_instance
 
 # Relative gap of our objective to CLARABEL's, measured on the instances below (tol 1e-9):
 # l1t -8.4e-11, mtt -4.9e-11, mtmvt-ls -9.9e-11, mtmvt-lad +2.4e-9. Bounds ~10x those.
@@ -160,13 +158,16 @@ def test_mtmvt_objective_loss():
         mtmvt_objective(X, D, P, Q, 0.2, 0.1, loss="l2")
 
 
-@pytest.mark.parametrize("solver, kwargs, name", [
-    (solve_l1t, dict(lam=-1), "lam"),
-    (solve_mtmvt_lad, dict(lam_p=-1), "lam_p"),
-    (solve_mtt, dict(tol=0), "tol"),
-    (solve_mtmvt_ls, dict(lam_q=-0.1), "lam_q"),
-    (solve_mtmvt_lad, dict(max_iter=0), "max_iter"),
-])
+@pytest.mark.parametrize(
+    "solver, kwargs, name",
+    [
+        (solve_l1t, dict(lam=-1), "lam"),
+        (solve_mtmvt_lad, dict(lam_p=-1), "lam_p"),
+        (solve_mtt, dict(tol=0), "tol"),
+        (solve_mtmvt_ls, dict(lam_q=-0.1), "lam_q"),
+        (solve_mtmvt_lad, dict(max_iter=0), "max_iter"),
+    ],
+)
 def test_bad_parameters_are_named(inst, solver, kwargs, name):
     X, D, *_ = inst
     with pytest.raises(ValueError, match=name):

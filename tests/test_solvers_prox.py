@@ -70,8 +70,9 @@ def test_huber_prox_by_scalar_minimization(gamma, rho):
         return (r - e) ** 2 + gamma * abs(e)
 
     for v in np.linspace(-2, 2, 41):
-        res = minimize_scalar(lambda r: h(r) + rho / 2 * (r - v) ** 2, bounds=(-5, 5), method="bounded",
-                              options={"xatol": 1e-12})
+        res = minimize_scalar(
+            lambda r, v=v: h(r) + rho / 2 * (r - v) ** 2, bounds=(-5, 5), method="bounded", options={"xatol": 1e-12}
+        )
         assert huber_prox(np.array([v]), gamma, rho)[0] == pytest.approx(res.x, abs=1e-6)
 
 

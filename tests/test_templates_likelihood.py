@@ -28,7 +28,8 @@ def test_likelihood_formula_and_invalid():
 def test_similar_candidate_does_not_replace():
     ts = _templates()
     x = [ts.dictionaries[0][:, 2].copy(), ts.dictionaries[1][:, 2].copy()]
-    c = np.zeros((2, 4)); c[:, 2] = 1.0
+    c = np.zeros((2, 4))
+    c[:, 2] = 1.0
     e = [np.zeros(6), np.zeros(6)]
     d = ts.update(x, c, e, update_angle=30, occlusion_fraction=0.25)
     assert d.replaced is None and d.angle == pytest.approx(0.0, abs=1e-3)
@@ -42,7 +43,8 @@ def test_dissimilar_candidate_replaces_least_important_never_first():
     D0 = ts.dictionaries[0].copy()
     x_new = _unit(D0[:, 1] + 1.5 * _unit(np.arange(6.0)))
     x = [x_new.astype(np.float32), x_new.astype(np.float32)]
-    c = np.zeros((2, 4)); c[:, 1] = 0.5
+    c = np.zeros((2, 4))
+    c[:, 1] = 0.5
     e = [np.zeros(6), np.zeros(6)]
     d = ts.update(x, c, e, update_angle=30, occlusion_fraction=0.25)
     assert d.angle > 30
@@ -55,7 +57,8 @@ def test_dissimilar_candidate_replaces_least_important_never_first():
 def test_occlusion_suspends_updates_for_five_frames():
     ts = _templates()
     far = _unit(np.ones(6)).astype(np.float32)
-    c = np.zeros((2, 4)); c[:, 1] = 0.2
+    c = np.zeros((2, 4))
+    c[:, 1] = 0.2
     occluded_e = [np.r_[1.0, 1.0, 0, 0, 0, 0], np.zeros(6)]  # 2/6 > 0.25 of the intensity view
     d = ts.update([far, far], c, occluded_e, update_angle=30, occlusion_fraction=0.25)
     assert d.occluded and d.replaced is None
@@ -67,7 +70,8 @@ def test_occlusion_suspends_updates_for_five_frames():
 
 def test_anchor_check_blocks_a_replacement_far_from_the_first_template():
     far = _unit(np.r_[1.0, -1.0, 1.0, -1.0, 1.0, -1.0]).astype(np.float32)
-    c = np.zeros((2, 4)); c[:, 1] = 0.2
+    c = np.zeros((2, 4))
+    c[:, 1] = 0.2
     e = [np.zeros(6), np.zeros(6)]
     ts = _templates()
     cos0 = float(np.dot(far, ts.dictionaries[0][:, 0]))
@@ -135,7 +139,8 @@ def test_fixed_templates_are_never_replaced():
     ts.weights = np.array([0.1, 0.05, 0.15, 0.7])  # template 1 is the lightest, but fixed
     D0 = [Dk.copy() for Dk in ts.dictionaries]
     far = _unit(np.r_[1.0, -1.0, 1.0, -1.0, 1.0, -1.0]).astype(np.float32)
-    c = np.zeros((2, 4)); c[:, 3] = 0.1
+    c = np.zeros((2, 4))
+    c[:, 3] = 0.1
     d = ts.update([far, far], c, [np.zeros(6), np.zeros(6)], update_angle=30, occlusion_fraction=0.25, fixed=2)
     assert d.replaced == 2
     np.testing.assert_array_equal(ts.dictionaries[0][:, :2], D0[0][:, :2])

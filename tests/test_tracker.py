@@ -75,11 +75,14 @@ def test_update_before_init():
         Tracker(FAST).update(np.zeros((20, 20), np.uint8))
 
 
-@pytest.mark.parametrize("frame,match", [
-    (np.zeros((5, 5, 2), np.uint8), "shape"),
-    (np.full((30, 30), np.nan, np.float32), "NaN"),
-    (np.zeros((30, 30), np.int64), "dtype"),
-])
+@pytest.mark.parametrize(
+    "frame,match",
+    [
+        (np.zeros((5, 5, 2), np.uint8), "shape"),
+        (np.full((30, 30), np.nan, np.float32), "NaN"),
+        (np.zeros((30, 30), np.int64), "dtype"),
+    ],
+)
 def test_bad_frames_name_the_problem(demo, frame, match):
     t = Tracker(FAST)
     t.init(demo.frames[0], demo.groundtruth[0])
@@ -142,8 +145,9 @@ def test_prepare_frame_keeps_the_channel_count_it_is_given():
     np.testing.assert_allclose(one.color[..., 0], 200 / 255 * 0.299, atol=2e-3)
 
 
-@pytest.mark.parametrize("name,views", [("l1t", ("intensity",)), ("mtt", ("intensity",)),
-                                        ("mtmvt-ls", ("intensity", "color", "hog", "lbp"))])
+@pytest.mark.parametrize(
+    "name,views", [("l1t", ("intensity",)), ("mtt", ("intensity",)), ("mtmvt-ls", ("intensity", "color", "hog", "lbp"))]
+)
 def test_comparison_models_track_in_the_same_filter(demo, name, views):
     """The paper's comparison models as observation models of our particle filter."""
     from smtmvt.evaluation.trackers import make_tracker
