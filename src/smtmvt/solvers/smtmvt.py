@@ -315,12 +315,12 @@ def _solve_admm(X, D, lam, gamma, tol, max_iter, C0, E0, rho=2.0, beta=0.5):
         # Huber gradient / rho; U1 = lam/(rho beta) U V' keeps
         # SVT(C0 + U1) = C0; U2 = gamma/(rho beta) on the support keeps
         # Z2 = C0 there; off the support U2 takes the rest of the sum
-        # U1 + U2 = -D'U_R / beta required by the C step. Exact at an optimum
+        # U1 + U2 = D'U_R / beta required by the C step's fixed point. Exact at an optimum
         # whose Pi_i(C) have no singular values below 1e-6 s_max, approximate
         # otherwise; any start converges anyway.
         U1 = (lam / (rho * beta)) * _nuclear_subgradient(C0, rtol=1e-6)
         t2 = gamma / (rho * beta)
-        U2 = np.where(C0 > 0, t2, np.minimum(-DtUR / beta - U1, t2))
+        U2 = np.where(C0 > 0, t2, np.minimum(DtUR / beta - U1, t2))
         DtR = DX - G @ C0
     X = list(X)
 
