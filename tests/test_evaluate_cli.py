@@ -309,7 +309,8 @@ def test_package_reexports_lazily():
 def test_killing_the_driver_ends_its_workers(tmp_path, sig):
     """SIGKILL or SIGTERM of ``evaluate --workers 2``: no worker is left behind; SIGTERM stops
     the run like Ctrl-C (exit 128 + 15), and what was written is whole."""
-    psutil = pytest.importorskip("psutil")
+    import psutil  # pinned in requirements.txt: a missing one fails
+
     root = _squares(tmp_path / "otb", n=6, n_frames=40)
     run_dir = tmp_path / "run"
     err_file = tmp_path / "stderr.txt"  # not a pipe: orphaned workers would hold it open

@@ -398,7 +398,8 @@ def test_process_pool_equals_sequential(dataset, tmp_path, sequential_run):
 @pytest.fixture(scope="module")
 def cluster():
     """A real Dask cluster of two worker processes (one thread each)."""
-    distributed = pytest.importorskip("distributed")
+    import distributed  # pinned in requirements.txt: a missing one fails
+
     with distributed.LocalCluster(
         n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None, silence_logs=40
     ) as c:
@@ -445,7 +446,6 @@ def test_smtmvt_same_boxes_in_process_pool_and_dask(dataset, tmp_path, cluster):
 
 
 def test_unreachable_scheduler_is_a_clear_error(dataset, tmp_path):
-    pytest.importorskip("distributed")
     import socket
 
     import dask

@@ -96,7 +96,8 @@ def test_gray_and_16bit_frames_track_like_8bit(demo):
     a = _track(list(gray8), demo.groundtruth[0], FAST)
     b = _track(list(gray16), demo.groundtruth[0], FAST)
     np.testing.assert_allclose(a, b, atol=1e-6)
-    assert overlap_ratio(a, demo.groundtruth[:6]).mean() > 0.5
+    # measured 0.910 (seeds 1-3: 0.881, 0.937, 0.894); a box that never moves scores 0.467
+    assert overlap_ratio(a, demo.groundtruth[:6]).mean() > 0.8
 
 
 def test_blank_and_partly_outside_never_nan(demo):

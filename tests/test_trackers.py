@@ -270,7 +270,6 @@ def test_deterministic_peers_repeat_exactly():
 
 
 def test_smtmvt_adapter_tracks_and_repeats_with_a_seed():
-    pytest.importorskip("smtmvt.tracker")
     frames, gt = moving_square(n=6)
     runs = [track(make_tracker("smtmvt", seed=11, n_particles=40), frames, gt[0]) for _ in range(2)]
     assert runs[0] == runs[1]
