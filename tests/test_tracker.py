@@ -171,3 +171,32 @@ def test_comparison_models_track_in_the_same_filter(demo, name, views):
 def test_unknown_model_is_rejected():
     with pytest.raises(ValueError, match="model"):
         TrackerConfig(model="nope")
+
+
+def test_view_weights_of_one_change_nothing(demo):
+    a = _track(demo.frames[:6], demo.groundtruth[0], FAST)
+    b = _track(demo.frames[:6], demo.groundtruth[0], FAST.replace(view_weights=(1, 1, 1, 1)))
+    np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("weights", [(1, 1, 1), (1, 0, 1, 1), (1, -1, 1, 1), (1, float("nan"), 1, 1)])
+def test_view_weights_are_checked(weights):
+    with pytest.raises(ValueError, match="view_weights"):
+        TrackerConfig(view_weights=weights)
+
+
+def test_view_weights_weigh_each_views_residual(demo):
+    """The chosen candidate's residual is sum_k w_k ||D_k c_k - x_k||^2 on the unit-norm
+    views and templates (its codes come from the problem scaled by sqrt(w_k)), and the
+    templates stay unit-norm (the update rule's angles assume it)."""
+    w = (2.0, 0.25, 0.5, 1.0)
+    t = Tracker(FAST.replace(view_weights=w))
+    t.init(demo.frames[0], demo.groundtruth[0])
+    D = [Dk.copy() for Dk in t._templates.dictionaries]
+    result, detail = t.update_detailed(demo.frames[1])
+    C = detail.observation.C[:, :, detail.best]
+    parts = [wk * float(np.sum((Dk @ C[k] - x) ** 2)) for k, (wk, Dk, x) in enumerate(zip(w, D, detail.best_views))]
+    assert result.residual == pytest.approx(sum(parts), rel=1e-5)
+    assert parts[0] != pytest.approx(sum(parts) / 4, rel=0.05)  # the views are not all alike
+    for Dk in t._templates.dictionaries:
+        np.testing.assert_allclose(np.linalg.norm(Dk, axis=0), 1.0, atol=1e-5)

@@ -30,6 +30,7 @@ or lost early: Basketball 0.47 / 0.03 / 0.15, Singer2 0.36 / 0.69, David 0.66
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -125,6 +126,11 @@ class TrackerConfig:
         template (the exact initial target) is at least ``anchor_cos``; -1
         disables the check (the paper, L1T). Not yet measured on the 18
         sequences.
+    view_weights : tuple of float or None
+        One weight per view (in ``views`` order) on its squared residual, in
+        the coding and in the likelihood: each view's candidates and templates
+        are scaled by ``sqrt(weight)`` there (the template update still sees
+        the unit-norm views). None weighs all views 1 (the paper).
     occlusion_fraction : float
         Fraction of the intensity template flagged by E above which the frame
         is treated as occluded and no template is replaced (L1-APG: 0.25).
@@ -203,6 +209,7 @@ class TrackerConfig:
     occlusion_fraction: float = 0.25
     fixed_templates: int = 1
     anchor_cos: float = -1.0
+    view_weights: tuple | None = None
     prune_eps: float = 1e-3
     frame_size: tuple | None = None
     scale_normalize: bool = True
@@ -249,6 +256,14 @@ class TrackerConfig:
         object.__setattr__(self, "feature_size", tuple(int(s) for s in self.feature_size))
         if self.frame_size is not None:
             object.__setattr__(self, "frame_size", tuple(int(s) for s in self.frame_size))
+        if self.view_weights is not None:
+            weights = tuple(float(w) for w in self.view_weights)
+            if len(weights) != len(self.views) or not all(w > 0 and math.isfinite(w) for w in weights):
+                raise ValueError(
+                    f"TrackerConfig: invalid view_weights={self.view_weights!r}: "
+                    f"one positive number per view ({len(self.views)})"
+                )
+            object.__setattr__(self, "view_weights", weights)
 
     @classmethod
     def paper(cls, **changes) -> TrackerConfig:
@@ -286,6 +301,7 @@ class TrackerConfig:
             occlusion_fraction=0.25,
             fixed_templates=1,
             anchor_cos=-1.0,
+            view_weights=None,
             frame_size=(320, 240),
             scale_normalize=False,
             antialias=0.0,

@@ -174,6 +174,14 @@ class Tracker:
         with self._timed("features"):
             return extract_views(patches, cfg.views, self._view_options)
 
+    def _weighted(self, views: list) -> list:
+        """``views`` scaled by ``sqrt(config.view_weights)`` (unchanged when None): the
+        coding and the likelihood then weigh view k's squared residual by its weight."""
+        w = self.config.view_weights
+        if w is None:
+            return list(views)
+        return [np.float32(np.sqrt(wk)) * v for wk, v in zip(w, views)]
+
     def _template_states(self, state: np.ndarray) -> np.ndarray:
         """The N template states: the exact first box, then N-1 jittered copies.
 
@@ -318,9 +326,10 @@ class Tracker:
         with self._timed("motion"):
             valid = inside_fraction(states, work_shape) >= 0.5
         is_probe = np.arange(len(states)) >= n
+        Xw, Dw = self._weighted(X), self._weighted(self._templates.dictionaries)
         obs = observe(
-            X,
-            self._templates.dictionaries,
+            Xw,
+            Dw,
             self._code,
             cfg.alpha,
             valid=valid & ~is_probe,
