@@ -531,3 +531,21 @@ def test_admm_tolerances_and_penalty_rule_as_documented():
     for it_s, rp, expect in ((it, 10 * mu, 2.0), (it, 0.1 / mu, 0.5), (it, 1.0, 1.0), (it + 1, 10 * mu, 1.0)):
         out = rules.penalty_factor(it_s, 0, rp, 1.0, 1.0, 1.0)
         assert type(out) is float and out == expect
+
+
+def test_admm_info_aggregates_the_independent_per_candidate_runs():
+    """One ADMM per candidate: the batch's info is the per-candidate runs' (max and mean iterations,
+    root sum of squares of the residuals, median rho); the iteration cap is exact."""
+    X, D = make_instance(41, K=3, N=5, n=5)
+    _, _, info = solve_smtmvt(X, D, tol=1e-6, return_info=True)
+    singles = [solve_smtmvt([x[:, [i]] for x in X], D, tol=1e-6, return_info=True)[2] for i in range(5)]
+    its = [s.iterations for s in singles]
+    assert type(info.iterations) is int and info.iterations == max(its) and len(set(its)) > 1
+    assert info.mean_iterations == pytest.approx(np.mean(its), rel=1e-15)
+    assert info.converged
+    assert info.primal_residual == pytest.approx(np.sqrt(sum(s.primal_residual**2 for s in singles)), rel=1e-12)
+    assert info.dual_residual == pytest.approx(np.sqrt(sum(s.dual_residual**2 for s in singles)), rel=1e-12)
+    assert info.rho == pytest.approx(np.median([s.rho for s in singles]), rel=1e-15)
+    # the cap: exactly max_iter iterations, not converged
+    _, _, capped = solve_smtmvt(X, D, tol=1e-12, max_iter=3, return_info=True)
+    assert capped.iterations == 3 and capped.mean_iterations == 3.0 and not capped.converged
