@@ -1,5 +1,7 @@
 """Bounded coding: the least-squares bound, per-candidate solves, and skipping candidates."""
 
+from contextlib import contextmanager
+
 import numpy as np
 import pytest
 
@@ -163,3 +165,104 @@ def test_nonnegative_bound_equals_scipy_nnls_and_bounds_every_nonnegative_code()
     rng = np.random.default_rng(1)
     for _ in range(20):
         assert np.all(bound <= reconstruction_residual(X, D, np.abs(rng.standard_normal(C.shape))))
+
+
+def _fast_code(X, D):
+    return solve_smtmvt(X, D, lam=0.1, gamma=0.25, tol=1e-6)
+
+
+def _rule(bound, residual, alpha, eps, valid):
+    """The coded set of the module docstring's rule, from the bounds and the first pass's residuals."""
+    from smtmvt.likelihood import FIRST_PASS
+
+    order = np.flatnonzero(valid)[np.argsort(bound[valid], kind="stable")]
+    first, rest = order[:FIRST_PASS], order[FIRST_PASS:]
+    best = residual[first].min()
+    tail = np.cumsum(np.exp(-alpha * (bound[rest] - best))[::-1])[::-1]  # bounds skipped from each position on
+    expected = np.zeros(len(bound), dtype=bool)
+    expected[first] = True
+    expected[rest[tail > eps]] = True
+    return expected
+
+
+def test_observe_codes_exactly_the_candidates_of_the_rule():
+    """A case where the second pass codes some candidates and skips others (default eps 1e-3)."""
+    from smtmvt.solvers.bounds import nonnegative_residuals
+
+    X, D = make_instance(36, K=2, N=4, n=40)
+    valid = np.ones(40, dtype=bool)
+    valid[[3, 17]] = False
+    stages = []
+
+    @contextmanager
+    def timed(stage):
+        stages.append(stage)
+        yield
+
+    obs = observe(X, D, _fast_code, alpha=3.0, valid=valid.astype(int), timed=timed)  # integer flags work too
+    np.testing.assert_array_equal(obs.bound, nonnegative_residuals(X, D))
+    expected = _rule(obs.bound, obs.residual, 3.0, 1e-3, valid)
+    np.testing.assert_array_equal(obs.coded, expected)
+    assert 16 < obs.coded.sum() < 38 and not obs.coded[[3, 17]].any()
+    assert set(stages) == {"likelihood", "solve"} and stages.count("solve") == 2  # two passes
+    # codes, outliers and likelihoods of the coded candidates are the solver's; zero elsewhere
+    idx = np.flatnonzero(obs.coded)
+    C, E = _fast_code([x[:, idx] for x in X], D)
+    np.testing.assert_allclose(obs.C[:, :, idx], C, atol=1e-12)
+    assert not obs.C[:, :, ~obs.coded].any()
+    for k in range(2):
+        np.testing.assert_allclose(obs.E[k][:, idx], E[k], atol=1e-12)
+        assert not obs.E[k][:, ~obs.coded].any()
+    np.testing.assert_allclose(
+        obs.likelihood[idx], np.exp(-3.0 * reconstruction_residual(X, D, obs.C)[idx]), rtol=1e-12
+    )
+    assert np.all(obs.likelihood[~obs.coded] == 0)
+
+
+def test_observe_eps_zero_codes_every_valid_candidate_with_the_least_squares_bound():
+    """Even where every other candidate's bound underflows against the best (alpha 1e4)."""
+    X, D = make_instance(37, K=1, N=4, n=20)  # a single view works too
+    valid = np.ones(20, dtype=bool)
+    valid[5] = False
+    obs = observe(X, D, _fast_code, alpha=1e4, valid=valid, eps=0.0)
+    np.testing.assert_array_equal(obs.coded, valid)
+    np.testing.assert_array_equal(obs.bound, least_squares_residuals(X, D))
+    assert obs.likelihood[5] == 0 and np.isnan(obs.residual[5])
+
+
+def test_observe_an_invalid_probe_does_not_set_the_best_likelihood():
+    """A probe (always, not valid) reconstructed exactly must not lower the best residual of the rule."""
+    X, D = make_instance(36, K=2, N=4, n=40)
+    X = [np.column_stack([Xk, Dk @ np.array([0.3, 0.2, 0.0, 0.1])]) for Xk, Dk in zip(X, D)]  # residual ~0
+    valid = np.r_[np.ones(40, dtype=bool), False]
+    obs = observe(X, D, _fast_code, alpha=3.0, valid=valid, always=~valid)
+    assert obs.coded[40] and obs.residual[40] < np.nanmin(obs.residual[:40])  # it would be the best
+    np.testing.assert_array_equal(obs.coded[:40], observe([x[:, :40] for x in X], D, _fast_code, alpha=3.0).coded)
+
+
+def test_bounds_are_computed_in_float64_from_float32_views_and_templates():
+    """The tracker's templates are float32: the bounds are those of the float64 copies."""
+    from smtmvt.solvers.bounds import nonnegative_residuals
+
+    X, D = make_instance(38, K=2, N=5, n=6)
+    X32, D32 = [x.astype(np.float32) for x in X], [d.astype(np.float32) for d in D]
+    X64, D64 = [x.astype(np.float64) for x in X32], [d.astype(np.float64) for d in D32]
+    np.testing.assert_allclose(least_squares_residuals(X32, D32), least_squares_residuals(X64, D64), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(nonnegative_residuals(X32, D32), nonnegative_residuals(X64, D64), rtol=0, atol=1e-12)
+    # a sum over the views: a single view works, and two single views add up to both
+    one_by_one = nonnegative_residuals(X[:1], D[:1]) + nonnegative_residuals(X[1:], D[1:])
+    # (up to the margins: each value is lowered by NNLS_MARGIN per view, or is the least-squares bound)
+    np.testing.assert_allclose(one_by_one, nonnegative_residuals(X, D), rtol=0, atol=2e-9)
+
+
+def test_range_basis_rank_is_relative_to_the_largest_singular_value():
+    rng = np.random.default_rng(39)
+    u, v2, v3, w = (rng.standard_normal(12) for _ in range(4))
+    # singular values about 1e6, 4, 3 and 1e-5 (relative 1e-11 < rtol 1e-10: dropped)
+    D = np.column_stack([1e6 * u, v2, v3, v2 + 1e-5 * w])
+    assert range_basis(D).shape == (12, 3)
+    assert range_basis(1e-8 * D).shape == (12, 3)  # scale-free
+    # a zero dictionary has an empty range: the bound is ||x||^2; so has one without templates
+    X = [rng.standard_normal((12, 3))]
+    assert range_basis(np.zeros((12, 4))).shape == (12, 0) and range_basis(np.zeros((12, 0))).shape == (12, 0)
+    np.testing.assert_allclose(least_squares_residuals(X, [np.zeros((12, 4))]), (X[0] ** 2).sum(axis=0), rtol=1e-14)

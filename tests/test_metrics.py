@@ -507,3 +507,32 @@ def test_sequence_score_to_dict_holds_the_scores_as_plain_numbers():
     assert d["avg_overlap"] == pytest.approx((2 + 2 / 3) / 3)
     assert all(type(v) is float for k, v in d.items() if k not in ("n_frames", "n_valid"))
     assert type(d["n_frames"]) is int and type(d["n_valid"]) is int
+
+
+def test_valid_groundtruth_default_rule_is_otb():
+    """x = 0 is a valid size but fails MATLAB's "all four > 0": the default is the OTB rule."""
+    gt = np.array([[0, 5, 10, 10], [3, 5, 10, 10]], float)
+    np.testing.assert_array_equal(valid_groundtruth(gt), valid_groundtruth(gt, "otb"))
+    np.testing.assert_array_equal(valid_groundtruth(gt), [False, True])
+    np.testing.assert_array_equal(valid_groundtruth(gt, "pytracking"), [True, True])
+
+
+def test_float32_boxes_are_scored_in_float64():
+    """A float32 result file gives the same numbers as its float64 copy (computed in double, as MATLAB)."""
+    rng = np.random.default_rng(7)
+    a = (rng.uniform(0, 50, (30, 4)) + [0, 0, 5, 5]).astype(np.float32)
+    b = (a + rng.normal(0, 3, a.shape)).astype(np.float32)
+    a64, b64 = a.astype(np.float64), b.astype(np.float64)
+    np.testing.assert_array_equal(overlap_ratio(a, b), overlap_ratio(a64, b64))
+    np.testing.assert_array_equal(center_error(a, b), center_error(a64, b64))
+
+
+def test_aggregate_with_empty_curves_warns_nothing():
+    gt = np.array([[10, 10, 20, 20]] * 4, float)
+    gt_bad = gt.copy()
+    gt_bad[0] = 0
+    empty = score_sequence(np.array([[500, 500, 20, 20]] * 4, float), gt_bad)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        agg = aggregate([score_sequence(gt, gt), empty])
+    assert agg.auc == pytest.approx(20 / 21)

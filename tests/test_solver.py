@@ -497,3 +497,55 @@ def test_nan_input_rejected():
     X[0][0, 0] = np.nan
     with pytest.raises(ValueError, match=r"X\[0\].*NaN"):
         solve_smtmvt(X, D)
+
+
+def test_admm_tolerances_and_penalty_rule_as_documented():
+    """Residual balancing (Boyd et al. 3.4.1): rho x2 when the scaled primal residual is more than
+    ADAPT_RATIO times the dual one, x0.5 when less than 1/ADAPT_RATIO, on every ADAPT_EVERY-th
+    iteration up to ADAPT_UNTIL, at most ADAPT_MAX changes."""
+    from smtmvt.solvers import _admm_rules as rules
+
+    eps_pri, eps_dual = rules.tolerances(1e-4, 3.0, np.array([2.0, 5.0]))
+    assert eps_pri == 1e-4 * 3.0 + rules.ABS_FLOOR
+    np.testing.assert_array_equal(eps_dual, 1e-4 * np.array([2.0, 5.0]) + rules.ABS_FLOOR)
+
+    it = rules.ADAPT_EVERY * 2
+    mu = rules.ADAPT_RATIO
+    # per-entry ratios (r_pri / eps_pri) / (r_dual / eps_dual): above mu, equal to mu, between, 1/mu, below, dual 0
+    r_pri = np.array([2 * mu, mu, 1.0, 1 / mu, 0.5 / mu, 1.0])
+    r_dual = np.array([1.0, 1.0, 1.0, 1.0, 1.0, 0.0])
+    f = rules.penalty_factor(it, np.zeros(6), r_pri, 1.0, r_dual, 1.0)
+    np.testing.assert_array_equal(f, [2.0, 1.0, 1.0, 1.0, 0.5, 2.0])
+    # at most ADAPT_MAX changes per entry
+    n_adapt = np.array([rules.ADAPT_MAX - 1, rules.ADAPT_MAX, rules.ADAPT_MAX + 1, 0, rules.ADAPT_MAX, 0])
+    np.testing.assert_array_equal(
+        rules.penalty_factor(it, n_adapt, r_pri, 1.0, r_dual, 1.0), [2.0, 1.0, 1.0, 1.0, 1.0, 2.0]
+    )
+    # only on every ADAPT_EVERY-th iteration, up to ADAPT_UNTIL included
+    for it_off in (it + 1, rules.ADAPT_UNTIL + rules.ADAPT_EVERY):
+        off = rules.penalty_factor(it_off, np.zeros(6), r_pri, 1.0, r_dual, 1.0)
+        assert isinstance(off, np.ndarray) and off.shape == (6,) and np.all(off == 1.0)
+    assert rules.ADAPT_UNTIL % rules.ADAPT_EVERY == 0
+    np.testing.assert_array_equal(rules.penalty_factor(rules.ADAPT_UNTIL, np.zeros(6), r_pri, 1.0, r_dual, 1.0)[0], 2.0)
+    # a scalar ADMM gets a float: 2, 0.5 or 1, also off the schedule
+    for it_s, rp, expect in ((it, 10 * mu, 2.0), (it, 0.1 / mu, 0.5), (it, 1.0, 1.0), (it + 1, 10 * mu, 1.0)):
+        out = rules.penalty_factor(it_s, 0, rp, 1.0, 1.0, 1.0)
+        assert type(out) is float and out == expect
+
+
+def test_admm_info_aggregates_the_independent_per_candidate_runs():
+    """One ADMM per candidate: the batch's info is the per-candidate runs' (max and mean iterations,
+    root sum of squares of the residuals, median rho); the iteration cap is exact."""
+    X, D = make_instance(41, K=3, N=5, n=5)
+    _, _, info = solve_smtmvt(X, D, tol=1e-6, return_info=True)
+    singles = [solve_smtmvt([x[:, [i]] for x in X], D, tol=1e-6, return_info=True)[2] for i in range(5)]
+    its = [s.iterations for s in singles]
+    assert type(info.iterations) is int and info.iterations == max(its) and len(set(its)) > 1
+    assert info.mean_iterations == pytest.approx(np.mean(its), rel=1e-15)
+    assert info.converged
+    assert info.primal_residual == pytest.approx(np.sqrt(sum(s.primal_residual**2 for s in singles)), rel=1e-12)
+    assert info.dual_residual == pytest.approx(np.sqrt(sum(s.dual_residual**2 for s in singles)), rel=1e-12)
+    assert info.rho == pytest.approx(np.median([s.rho for s in singles]), rel=1e-15)
+    # the cap: exactly max_iter iterations, not converged
+    _, _, capped = solve_smtmvt(X, D, tol=1e-12, max_iter=3, return_info=True)
+    assert capped.iterations == 3 and capped.mean_iterations == 3.0 and not capped.converged

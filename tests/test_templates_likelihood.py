@@ -144,3 +144,99 @@ def test_fixed_templates_are_never_replaced():
     d = ts.update([far, far], c, [np.zeros(6), np.zeros(6)], update_angle=30, occlusion_fraction=0.25, fixed=2)
     assert d.replaced == 2
     np.testing.assert_array_equal(ts.dictionaries[0][:, :2], D0[0][:, :2])
+
+
+def test_initial_weights_are_uniform_and_sum_to_one():
+    ts = _templates(N=5)
+    np.testing.assert_allclose(ts.weights, np.full(5, 0.2), rtol=1e-15)
+
+
+def test_weights_are_computed_in_float64_whatever_the_codes_dtype():
+    ts, ref = _templates(), _templates()
+    c = np.array([[0.2, 0.0, 0.6, 0.1], [0.4, 0.2, 0.2, 0.1]])
+    x = [ts.dictionaries[0][:, 2].copy(), ts.dictionaries[1][:, 2].copy()]
+    e = [np.zeros(6), np.zeros(6)]
+    ts.update(x, c.astype(np.float32), e, update_angle=30, occlusion_fraction=0.25)
+    ref.update(x, c.astype(np.float32).astype(np.float64), e, update_angle=30, occlusion_fraction=0.25)
+    np.testing.assert_allclose(ts.weights, ref.weights, rtol=1e-15)
+
+
+@pytest.mark.parametrize("code", [-1000.0, 1000.0])
+def test_extreme_codes_keep_the_weights_finite(code):
+    """exp(mean c) is clipped: codes far outside any real range neither underflow all weights to 0 nor overflow."""
+    ts = _templates()
+    w0 = np.array([0.1, 0.2, 0.3, 0.4])
+    ts.weights = w0.copy()
+    c = np.zeros((2, 4))
+    c[:, 1] = code
+    if code < 0:
+        c[:] = code  # every template: all of them would underflow to 0
+    x = [ts.dictionaries[0][:, 1].copy(), ts.dictionaries[1][:, 1].copy()]
+    ts.update(x, c, [np.zeros(6), np.zeros(6)], update_angle=180, occlusion_fraction=0.25)  # no replacement
+    assert np.all(np.isfinite(ts.weights)) and ts.weights.sum() == pytest.approx(1.0)
+    clipped = w0 * np.exp(np.clip(c.mean(axis=0), -50, 50))
+    np.testing.assert_allclose(ts.weights, clipped / clipped.sum(), rtol=1e-12)
+
+
+def test_without_an_intensity_view_occlusion_and_angle_use_every_view():
+    ts = _templates()
+    D = [Dk.astype(np.float64) for Dk in ts.dictionaries]
+    c = np.zeros((2, 4))
+    c[:, 3] = 0.5  # j* = 3
+    x = [_unit(D[0][:, 3] + 0.3 * D[0][:, 1]), _unit(D[1][:, 3] + 2.0 * D[1][:, 2])]
+    e = [np.r_[0.5, 0, 0, 0, 0, 0], np.r_[0, -0.5, 0.25, 0, 0, 0]]  # 3 of 12 entries non-zero, all |e| < 1
+    d = ts.update(x, c, e, update_angle=90, occlusion_fraction=0.5, intensity_view=None)
+    assert d.occlusion == pytest.approx(3 / 12, abs=1e-15)
+    cos = np.mean([np.dot(x[0], D[0][:, 3]), np.dot(x[1], D[1][:, 3])])
+    assert d.angle == pytest.approx(np.degrees(np.arccos(cos)), abs=1e-4)
+    # with intensity view 0, the angle and occlusion are view 0's only
+    d0 = _templates().update(x, c, e, update_angle=90, occlusion_fraction=0.5, intensity_view=0)
+    assert d0.occlusion == pytest.approx(1 / 6, abs=1e-15)
+    assert d0.angle == pytest.approx(np.degrees(np.arccos(np.dot(x[0], D[0][:, 3]))), abs=1e-4)
+    assert abs(d0.angle - d.angle) > 5  # the two rules differ here
+
+
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_a_cosine_rounded_past_one_gives_a_finite_angle(sign):
+    """Views are normalized, but rounding can put a cosine just outside [-1, 1]: the angle is then 0 or 180.
+
+    The candidate is (minus) template 0 scaled by 1 + 1e-5, so its cosines with template 0 are
+    +-(1 + 1e-5). The opposite one is replaced: the default anchor_cos -1 checks nothing, even a
+    cosine below -1.
+    """
+    ts = _templates()
+    w0 = ts.weights.copy()
+    c = np.zeros((2, 4))
+    c[:, 0] = 0.5  # j* = 0
+    x = [sign * (1 + 1e-5) * Dk[:, 0].astype(np.float64) for Dk in ts.dictionaries]
+    d = ts.update(x, c, [np.zeros(6), np.zeros(6)], update_angle=30, occlusion_fraction=0.25)
+    assert d.angle == (0.0 if sign > 0 else 180.0)
+    w = w0 * np.exp(c.mean(axis=0))
+    assert d.replaced == (None if sign > 0 else 1 + int(np.argmin(w[1:])))
+
+
+def test_thresholds_are_strict_for_the_angle_and_inclusive_for_the_anchor():
+    """Replacement needs angle > update_angle (equal: kept) and anchor cosine >= anchor_cos (equal: replaced)."""
+    far = _unit(np.r_[1.0, -1.0, 1.0, -1.0, 1.0, -1.0]).astype(np.float32)
+    c = np.zeros((2, 4))
+    c[:, 1] = 0.2
+    e = [np.zeros(6), np.zeros(6)]
+    angle = _templates().update([far, far], c, e, update_angle=30, occlusion_fraction=0.25).angle
+    assert angle > 30
+    assert _templates().update([far, far], c, e, update_angle=angle, occlusion_fraction=0.25).replaced is None
+    ts = _templates()
+    cos0 = float(np.mean([float(np.dot(far, Dk[:, 0])) for Dk in ts.dictionaries]))  # as update computes it
+    d = ts.update([far, far], c, e, update_angle=30, occlusion_fraction=0.25, anchor_cos=cos0)
+    assert d.replaced is not None
+
+
+def test_when_every_template_is_fixed_none_is_replaced():
+    ts = _templates()
+    D0 = [Dk.copy() for Dk in ts.dictionaries]
+    far = _unit(np.r_[1.0, -1.0, 1.0, -1.0, 1.0, -1.0]).astype(np.float32)
+    c = np.zeros((2, 4))
+    c[:, 1] = 0.2
+    d = ts.update([far, far], c, [np.zeros(6), np.zeros(6)], update_angle=30, occlusion_fraction=0.25, fixed=4)
+    assert d.angle > 30 and d.replaced is None
+    for Dk, D0k in zip(ts.dictionaries, D0):
+        np.testing.assert_array_equal(Dk, D0k)
