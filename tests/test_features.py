@@ -347,6 +347,28 @@ def test_color_grid_is_the_histograms_of_the_cells():
         color_view(patches, grid=33)
 
 
+@pytest.mark.parametrize("shape, grid", [((5, 13, 11, 3), 2), ((5, 13, 11, 3), 3), ((3, 9, 14, 1), 4)])
+def test_color_grid_on_uneven_cells_equals_the_histograms_of_the_slices(shape, grid):
+    """The one-pass cell counting equals one histogram per slice ``[j L // grid, (j + 1) L // grid)``."""
+
+    class _Colors:
+        color = np.random.default_rng(9).random(shape, dtype=np.float32) * 1.2 - 0.1
+
+    n, h, w, _ = shape
+    rows = [j * h // grid for j in range(grid + 1)]
+    cols = [j * w // grid for j in range(grid + 1)]
+    c = _Colors.color
+    ref = np.concatenate(
+        [
+            color_histograms(np.ascontiguousarray(c[:, rows[i] : rows[i + 1], cols[j] : cols[j + 1]]))
+            for i in range(grid)
+            for j in range(grid)
+        ],
+        axis=1,
+    )
+    assert_array_equal(color_view(_Colors, grid=grid), ref)
+
+
 def test_color_values_outside_unit_range_are_clipped():
     colors = np.full((1, 8, 8, 3), 1.7, np.float32)
     colors[..., 1] = -0.3

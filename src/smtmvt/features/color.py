@@ -80,6 +80,25 @@ def _level_counts(colors, counts):  # pragma: no cover - compiled
     return counts
 
 
+@njit(cache=True, nogil=True, boundscheck=False)
+def _cell_level_counts(colors, cell_of_row, cell_of_col, grid, counts):  # pragma: no cover - compiled
+    """``counts[patch, cell, channel, level] +=`` 1 per pixel, with the levels of
+    :func:`_level_counts`; ``cell = cell_of_row[y] * grid + cell_of_col[x]``."""
+    n, h, w, c = colors.shape
+    scale = np.float32(_LEVELS - 1)
+    half = np.float32(0.5)
+    top = np.float32(_LEVELS - 0.5)
+    for k in range(n):
+        for y in range(h):
+            base = cell_of_row[y] * grid
+            for x in range(w):
+                cell = base + cell_of_col[x]
+                for ch in range(c):
+                    level = np.int64(min(max(colors[k, y, x, ch] * scale + half, half), top))
+                    counts[k, cell, ch, level] += 1
+    return counts
+
+
 def color_histograms(colors: np.ndarray, bins: int = COLOR_BINS) -> np.ndarray:
     """Soft-binned per-channel histograms of a stack of color patches.
 
@@ -144,9 +163,11 @@ def color_view(patches, grid: int = 1) -> np.ndarray:
         raise ValueError(f"color grid must be in [1, {min(h, w)}] for {h}x{w} patches, got {grid}")
     rows = (np.arange(grid + 1) * h) // grid
     cols = (np.arange(grid + 1) * w) // grid
-    cells = [
-        color_histograms(colors[:, rows[i] : rows[i + 1], cols[j] : cols[j + 1]], COLOR_BINS)
-        for i in range(grid)
-        for j in range(grid)
-    ]
-    return np.concatenate(cells, axis=1)
+    cell_of_row = np.searchsorted(rows, np.arange(h), side="right") - 1
+    cell_of_col = np.searchsorted(cols, np.arange(w), side="right") - 1
+    c = colors.shape[3]
+    counts = np.zeros((n, grid * grid, c, _LEVELS), dtype=np.int32)
+    _cell_level_counts(np.ascontiguousarray(colors, dtype=np.float32), cell_of_row, cell_of_col, grid, counts)
+    hist = counts.reshape(-1, _LEVELS) @ soft_binning_matrix(COLOR_BINS, _LEVELS)
+    area = (np.diff(rows)[:, None] * np.diff(cols)[None, :]).reshape(1, grid * grid, 1, 1)
+    return (hist.reshape(n, grid * grid, c, COLOR_BINS) / area).reshape(n, -1).astype(np.float32)
