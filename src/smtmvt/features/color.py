@@ -59,31 +59,14 @@ def soft_binning_matrix(bins: int = COLOR_BINS, levels: int = _LEVELS) -> np.nda
 
 
 @njit(cache=True, nogil=True, boundscheck=False)
-def _level_counts(colors, counts):  # pragma: no cover - compiled
-    """``counts[patch, channel, level] +=`` 1 per pixel, levels ``round(255 v)`` of ``v`` clipped to [0, 1].
+def _cell_level_counts(colors, cell_of_row, cell_of_col, grid, counts):  # pragma: no cover - compiled
+    """``counts[patch, cell, channel, level] +=`` 1 per pixel, ``cell = cell_of_row[y] * grid +
+    cell_of_col[x]``, levels ``round(255 v)`` of ``v`` clipped to [0, 1].
 
     The rounding is done in float32 as ``floor(clip(255 v + 0.5, 0.5, 255.5))``
     (round half up; clipping after the scale equals clipping to [0, 1] first;
     the value is positive, so truncation is the floor).
     """
-    n, h, w, c = colors.shape
-    scale = np.float32(_LEVELS - 1)
-    half = np.float32(0.5)
-    top = np.float32(_LEVELS - 0.5)
-    levels = np.empty(h * w * c, np.int64)
-    for k in range(n):
-        flat = colors[k].ravel()
-        for i in range(flat.shape[0]):  # vectorizes
-            levels[i] = np.int64(min(max(flat[i] * scale + half, half), top))
-        for i in range(flat.shape[0]):
-            counts[k, i % c, levels[i]] += 1
-    return counts
-
-
-@njit(cache=True, nogil=True, boundscheck=False)
-def _cell_level_counts(colors, cell_of_row, cell_of_col, grid, counts):  # pragma: no cover - compiled
-    """``counts[patch, cell, channel, level] +=`` 1 per pixel, with the levels of
-    :func:`_level_counts`; ``cell = cell_of_row[y] * grid + cell_of_col[x]``."""
     n, h, w, c = colors.shape
     scale = np.float32(_LEVELS - 1)
     half = np.float32(0.5)
@@ -97,6 +80,22 @@ def _cell_level_counts(colors, cell_of_row, cell_of_col, grid, counts):  # pragm
                     level = np.int64(min(max(colors[k, y, x, ch] * scale + half, half), top))
                     counts[k, cell, ch, level] += 1
     return counts
+
+
+def _grid_histograms(colors: np.ndarray, grid: int, bins: int) -> np.ndarray:
+    """(n, grid * grid * C * bins) float32 soft histograms of the cells of a
+    ``grid x grid`` layout (cell ``j`` along an axis of length L covers
+    ``[j L // grid, (j + 1) L // grid)``), each channel of a cell summing to 1."""
+    n, h, w, c = colors.shape
+    rows = (np.arange(grid + 1) * h) // grid
+    cols = (np.arange(grid + 1) * w) // grid
+    cell_of_row = np.searchsorted(rows, np.arange(h), side="right") - 1
+    cell_of_col = np.searchsorted(cols, np.arange(w), side="right") - 1
+    counts = np.zeros((n, grid * grid, c, _LEVELS), dtype=np.int32)
+    _cell_level_counts(np.ascontiguousarray(colors, dtype=np.float32), cell_of_row, cell_of_col, grid, counts)
+    hist = counts.reshape(-1, _LEVELS) @ soft_binning_matrix(bins, _LEVELS)
+    area = (np.diff(rows)[:, None] * np.diff(cols)[None, :]).reshape(1, grid * grid, 1, 1)
+    return (hist.reshape(n, grid * grid, c, bins) / area).reshape(n, -1).astype(np.float32)
 
 
 def color_histograms(colors: np.ndarray, bins: int = COLOR_BINS) -> np.ndarray:
@@ -126,12 +125,7 @@ def color_histograms(colors: np.ndarray, bins: int = COLOR_BINS) -> np.ndarray:
         raise ValueError(f"expected (n, H, W, C) colors, got shape {colors.shape}")
     if int(bins) < 2:
         raise ValueError(f"bins must be >= 2, got {bins}")
-    bins = int(bins)
-    n, h, w, c = colors.shape
-    counts = np.zeros((n, c, _LEVELS), dtype=np.int32)
-    _level_counts(np.ascontiguousarray(colors, dtype=np.float32), counts)
-    hist = counts.reshape(n * c, _LEVELS) @ soft_binning_matrix(bins, _LEVELS)
-    return (hist.reshape(n, c * bins) / (h * w)).astype(np.float32)
+    return _grid_histograms(colors, 1, int(bins))
 
 
 def color_view(patches, grid: int = 1) -> np.ndarray:
@@ -158,16 +152,7 @@ def color_view(patches, grid: int = 1) -> np.ndarray:
     grid = int(grid)
     if grid == 1:
         return color_histograms(colors, COLOR_BINS)
-    n, h, w, _ = colors.shape
+    _, h, w, _ = colors.shape
     if not 1 <= grid <= min(h, w):
         raise ValueError(f"color grid must be in [1, {min(h, w)}] for {h}x{w} patches, got {grid}")
-    rows = (np.arange(grid + 1) * h) // grid
-    cols = (np.arange(grid + 1) * w) // grid
-    cell_of_row = np.searchsorted(rows, np.arange(h), side="right") - 1
-    cell_of_col = np.searchsorted(cols, np.arange(w), side="right") - 1
-    c = colors.shape[3]
-    counts = np.zeros((n, grid * grid, c, _LEVELS), dtype=np.int32)
-    _cell_level_counts(np.ascontiguousarray(colors, dtype=np.float32), cell_of_row, cell_of_col, grid, counts)
-    hist = counts.reshape(-1, _LEVELS) @ soft_binning_matrix(COLOR_BINS, _LEVELS)
-    area = (np.diff(rows)[:, None] * np.diff(cols)[None, :]).reshape(1, grid * grid, 1, 1)
-    return (hist.reshape(n, grid * grid, c, COLOR_BINS) / area).reshape(n, -1).astype(np.float32)
+    return _grid_histograms(colors, grid, COLOR_BINS)
