@@ -58,8 +58,12 @@ def test_admm_reaches_cvxpy_optimum(lam, gamma):
     seed = LAMS.index(lam) * 10 + GAMMAS.index(gamma)
     X, D = make_instance(seed, K=[3, 4][seed % 2], N=3 + seed % 4, n=2 + seed % 5)
     ref, C_ref, _ = cvxpy_solve(X, D, lam, gamma)
+    for compiled in (True, False):  # both ADMM engines (tests/test_admm_kernel.py compares them closely)
+        _check_against_reference(X, D, lam, gamma, ref, C_ref, compiled)
 
-    C, E, info = solve_smtmvt(X, D, lam=lam, gamma=gamma, tol=1e-8, max_iter=20000, return_info=True)
+
+def _check_against_reference(X, D, lam, gamma, ref, C_ref, compiled):
+    C, E, info = solve_smtmvt(X, D, lam=lam, gamma=gamma, tol=1e-8, max_iter=20000, return_info=True, compiled=compiled)
 
     assert info.converged
     assert C.shape == C_ref.shape and C.dtype == np.float64
