@@ -1,5 +1,6 @@
 """Bounded coding: the least-squares bound, per-candidate solves, and skipping candidates."""
 
+import copy
 from contextlib import contextmanager
 
 import numpy as np
@@ -88,6 +89,46 @@ def test_observe_probes_are_coded_but_change_nothing():
     np.testing.assert_allclose(with_probes.likelihood[:-2], without.likelihood, rtol=1e-12)
 
 
+def test_observe_with_deferred_views_keeps_the_rule():
+    """The last view computed only where the bounds need it: the same best candidate
+    and codes, every skipped candidate's likelihood within the rule's eps, and
+    the deferred view computed for a fraction of the candidates only."""
+    X, D = make_instance(35, K=3, N=5, n=60)
+    eps = 1e-3
+    full = observe(X, D, _code, alpha=30.0, eps=0.0)
+    asked = []
+
+    def deferred(idx):
+        asked.append(np.array(idx))
+        return [X[2][:, idx]]
+
+    lazy = observe(X[:2], D, _code, alpha=30.0, eps=eps, deferred=deferred)
+    computed = np.concatenate(asked)
+    assert len(set(computed.tolist())) == len(computed)  # each candidate asked at most once
+    assert 16 <= len(computed) < 60  # the first pass, and not every candidate
+    np.testing.assert_array_equal(np.sort(computed), np.flatnonzero(lazy.complete))
+    assert lazy.complete[lazy.coded].all()
+    best = int(np.argmax(full.likelihood))
+    assert int(np.argmax(lazy.likelihood)) == best
+    np.testing.assert_allclose(lazy.residual[lazy.coded], full.residual[lazy.coded], atol=1e-12)
+    skipped = ~lazy.coded
+    assert skipped.any() and full.likelihood[skipped].sum() <= eps * full.likelihood[best]
+    # the views returned: every view where computed, zero columns elsewhere
+    np.testing.assert_array_equal(lazy.views[2][:, lazy.complete], X[2][:, lazy.complete])
+    assert not lazy.views[2][:, ~lazy.complete].any()
+    # the bounds are lower bounds of the residuals (partial ones where the view is missing)
+    assert np.all(lazy.bound <= full.residual + 1e-9)
+
+
+def test_observe_without_deferred_views_is_unchanged_by_the_option():
+    X, D = make_instance(36, K=3, N=5, n=40)
+    a = observe(X, D, _code, alpha=30.0, eps=1e-3)
+    b = observe(X, D, _code, alpha=30.0, eps=1e-3, deferred=lambda idx: [])
+    np.testing.assert_array_equal(a.coded, b.coded)
+    np.testing.assert_array_equal(a.likelihood, b.likelihood)
+    assert b.complete.all()
+
+
 @pytest.fixture(scope="module")
 def demo():
     return make_demo_sequence(n_frames=12)
@@ -108,10 +149,31 @@ def _boxes(demo, config, probes=False):
 
 
 def test_tracker_boxes_do_not_depend_on_bounded_coding_or_probes(demo):
-    cfg = TrackerConfig(n_particles=120, seed=4)
+    cfg = TrackerConfig(n_particles=120, seed=4, deferred_views=())
     pruned = _boxes(demo, cfg)
     np.testing.assert_array_equal(pruned, _boxes(demo, cfg.replace(prune_eps=0.0)))
     np.testing.assert_array_equal(pruned, _boxes(demo, cfg, probes=True))
+
+
+def test_deferred_views_choose_the_same_box_from_the_same_particles(demo):
+    """With the LBP view deferred, each frame's chosen particle is the one computing
+    every view chooses (the same particles: the state is copied across)."""
+    cfg = TrackerConfig(n_particles=200, seed=5)
+    assert cfg.deferred_views == ("lbp",)
+    lazy, eager = Tracker(cfg), Tracker(cfg.replace(deferred_views=()))
+    for t in (lazy, eager):
+        t.init(demo.frames[0], demo.groundtruth[0])
+    partial = []
+    for frame in demo.frames[1:]:
+        eager._rng = copy.deepcopy(lazy._rng)
+        eager._particles, eager._weights = lazy._particles.copy(), lazy._weights.copy()
+        ra, da = lazy.update_detailed(frame)
+        rb, db = eager.update_detailed(frame)
+        assert da.best == db.best and ra.box == rb.box
+        assert ra.residual == pytest.approx(rb.residual, rel=1e-9)
+        partial.append(da.observation.complete.mean())
+        eager._templates = copy.deepcopy(lazy._templates)
+    assert np.median(partial) < 0.5  # the LBP view was left out for most candidates
 
 
 def test_frame_size_tracks_in_the_working_frame_and_maps_boxes_back(demo):

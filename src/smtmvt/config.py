@@ -200,6 +200,15 @@ class TrackerConfig:
         Radius of the LBP view's neighbours, feature-patch pixels (1 as
         skimage's default; 2 separated a shifted box better in the same
         measurement, tracking with 2 not yet measured).
+    deferred_views : tuple of str
+        Views computed only for the candidates whose likelihood bound cannot
+        be settled without them (:func:`smtmvt.likelihood.observe`, "deferred
+        views"): those of them that end ``views`` (default the LBP view, the
+        most expensive, last in the default order). A speed setting: the chosen
+        box is the one computing every view would choose from the same
+        particles, and the likelihoods the resampling sees differ by the
+        bounded-coding rule's ``prune_eps`` at most. () computes every view of
+        every candidate. Used with SMTMVT's model and ``prune_eps`` > 0 only.
     blas_threads : int or None
         Threads the BLAS library may use inside :meth:`Tracker.init` and
         :meth:`Tracker.update` (None: leave it alone). The per-frame matrices
@@ -240,6 +249,7 @@ class TrackerConfig:
     lbp_plane: str = "gray"
     color_grid: int = 2
     lbp_radius: float = 1.0
+    deferred_views: tuple = ("lbp",)
     blas_threads: int | None = 1
     seed: int | None = 0
 
@@ -274,6 +284,7 @@ class TrackerConfig:
             if not ok:
                 raise ValueError(f"TrackerConfig: invalid {name}={getattr(self, name)!r}")
         object.__setattr__(self, "views", tuple(self.views))
+        object.__setattr__(self, "deferred_views", tuple(self.deferred_views))
         object.__setattr__(self, "affine_std", tuple(float(s) for s in self.affine_std))
         object.__setattr__(self, "feature_size", tuple(int(s) for s in self.feature_size))
         if self.frame_size is not None:

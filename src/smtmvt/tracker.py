@@ -138,7 +138,15 @@ class Tracker:
             self.timings[stage] += time.perf_counter() - t0
 
     def _views(self, frame: PreparedFrame, params: np.ndarray, plane_scale: float = 1.0) -> list:
-        """Candidate views ``[(d_k, m) float32]`` of the states ``params (m, 6)``.
+        """Candidate views ``[(d_k, m) float32]`` of the states ``params (m, 6)`` (see :meth:`_patches`)."""
+        return self._extract(self._patches(frame, params, plane_scale), self.config.views)
+
+    def _extract(self, patches: Patches, views) -> list:
+        with self._timed("features"):
+            return extract_views(patches, views, self._view_options)
+
+    def _patches(self, frame: PreparedFrame, params: np.ndarray, plane_scale: float = 1.0) -> Patches:
+        """The patches of the states ``params (m, 6)``.
 
         ``frame``'s planes may be the working frame resized by ``plane_scale``
         (plane pixels per working-frame pixel, see ``config.scale_normalize``):
@@ -171,16 +179,16 @@ class Tracker:
                 ),
                 raw=remap_patches(smooth(frame.gray, cfg.antialias * step_f), X, Y) if self._needs_raw else None,
             )
-        with self._timed("features"):
-            return extract_views(patches, cfg.views, self._view_options)
+        return patches
 
-    def _weighted(self, views: list) -> list:
-        """``views`` scaled by ``sqrt(config.view_weights)`` (unchanged when None): the
-        coding and the likelihood then weigh view k's squared residual by its weight."""
+    def _weighted(self, views: list, first: int = 0) -> list:
+        """``views`` (views ``first, first + 1, ...`` of ``config.views``) scaled by
+        ``sqrt(config.view_weights)`` (unchanged when None): the coding and the
+        likelihood then weigh view k's squared residual by its weight."""
         w = self.config.view_weights
         if w is None:
             return list(views)
-        return [np.float32(np.sqrt(wk)) * v for wk, v in zip(w, views)]
+        return [np.float32(np.sqrt(wk)) * v for wk, v in zip(w[first:], views)]
 
     def _template_states(self, state: np.ndarray) -> np.ndarray:
         """The N template states: the exact first box, then N-1 jittered copies.
@@ -246,6 +254,11 @@ class Tracker:
             "lbp": {"radius": cfg.lbp_radius, "plane": cfg.lbp_plane},
         }
         self._needs_raw = "gray" in (cfg.hog_plane, cfg.lbp_plane)
+        # the views from this index on are computed only where the bounds need them
+        n_first = len(cfg.views)
+        while n_first > 0 and cfg.views[n_first - 1] in cfg.deferred_views:
+            n_first -= 1
+        self._n_first = n_first if n_first > 0 and cfg.prune_eps > 0 and cfg.model in BOUNDED_CODING else len(cfg.views)
         self._rng = np.random.default_rng(cfg.seed)
         self._state = box_to_affine(wb)
         self._init_state = self._state.copy()
@@ -321,22 +334,36 @@ class Tracker:
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
-        X = self._views(prepared, states, plane_scale)
+        patches = self._patches(prepared, states, plane_scale)
+        # views computed for every candidate, and the views deferred (likelihood.observe)
+        now, later = cfg.views[: self._n_first], cfg.views[self._n_first :]
+        X = self._extract(patches, now)
         # A candidate mostly outside the image is not a valid observation.
         with self._timed("motion"):
             valid = inside_fraction(states, work_shape) >= 0.5
         is_probe = np.arange(len(states)) >= n
-        Xw, Dw = self._weighted(X), self._weighted(self._templates.dictionaries)
+        X_later = [
+            np.zeros((Dk.shape[0], len(states)), dtype=np.float32) for Dk in self._templates.dictionaries[len(now) :]
+        ]
+
+        def deferred(idx):
+            views = self._extract(patches.subset(idx), later)
+            for Xk, Vk in zip(X_later, views):
+                Xk[:, idx] = Vk
+            return self._weighted(views, first=len(now))
+
         obs = observe(
-            Xw,
-            Dw,
+            self._weighted(X),
+            self._weighted(self._templates.dictionaries),
             self._code,
             cfg.alpha,
             valid=valid & ~is_probe,
             eps=min(cfg.prune_eps, 0.5 / n),
             always=is_probe,
             timed=self._timed,
+            deferred=deferred if later else None,
         )
+        X = X + X_later
         p = obs.likelihood[:n]
 
         if not np.any(p > 0):
