@@ -548,3 +548,21 @@ def test_intensity_view_is_flattened_template():
     (X,) = extract_views(patches, ("intensity",))
     assert X.shape == (54, 3)
     assert_allclose(X[:, 1], normalize_columns(patches.intensity[1].reshape(-1, 1))[:, 0])
+
+
+def test_soft_binning_of_level_counts_equals_the_matrix_product():
+    """The histograms are ``counts @ soft_binning_matrix()``, computed from the two nonzero
+    weights of each level (the first and last levels have one)."""
+    from smtmvt.features.color import _LEVELS, _grid_histograms, soft_binning_matrix
+
+    rng = np.random.default_rng(13)
+    colors = rng.random((7, 12, 10, 3), dtype=np.float32)
+    colors[0] = 0.0  # level 0 only
+    colors[1] = 1.0  # level 255 only
+    levels = np.floor(np.clip(colors * 255 + 0.5, 0.5, 255.5)).astype(int)
+    counts = np.stack(
+        [np.stack([np.bincount(levels[k, ..., ch].ravel(), minlength=_LEVELS) for ch in range(3)]) for k in range(7)]
+    )
+    ref = (counts @ soft_binning_matrix()).reshape(7, -1) / (12 * 10)
+    assert_allclose(_grid_histograms(colors, 1, 16), ref, rtol=1e-6, atol=1e-7)
+    assert _grid_histograms(colors, 1, 16)[0, 0] == 1.0 and _grid_histograms(colors, 1, 16)[1, 15] == 1.0

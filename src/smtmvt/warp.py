@@ -79,7 +79,7 @@ def remap_patches(image: np.ndarray, X: np.ndarray, Y: np.ndarray) -> np.ndarray
         mx = X[s : s + rows_per_chunk].reshape(-1, pw)
         my = Y[s : s + rows_per_chunk].reshape(-1, pw)
         chunks.append(cv2.remap(img, mx, my, interpolation=cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE))
-    out = np.concatenate(chunks, axis=0)
+    out = chunks[0] if len(chunks) == 1 else np.concatenate(chunks, axis=0)
     return out.reshape((n, ph, pw) + img.shape[2:])
 
 

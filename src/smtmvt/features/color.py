@@ -93,9 +93,30 @@ def _grid_histograms(colors: np.ndarray, grid: int, bins: int) -> np.ndarray:
     cell_of_col = np.searchsorted(cols, np.arange(w), side="right") - 1
     counts = np.zeros((n, grid * grid, c, _LEVELS), dtype=np.int32)
     _cell_level_counts(np.ascontiguousarray(colors, dtype=np.float32), cell_of_row, cell_of_col, grid, counts)
-    hist = counts.reshape(-1, _LEVELS) @ soft_binning_matrix(bins, _LEVELS)
+    W = soft_binning_matrix(bins, _LEVELS)
+    lo = np.argmax(W > 0, axis=1)  # each level's first bin; the second is lo + 1 (weight 0 past the end)
+    w_lo = W[np.arange(_LEVELS), lo]
+    w_hi = np.where(lo + 1 < bins, W[np.arange(_LEVELS), np.minimum(lo + 1, bins - 1)], 0.0)
+    hist = _soft_bin(counts.reshape(-1, _LEVELS), lo, w_lo, w_hi, bins)
     area = (np.diff(rows)[:, None] * np.diff(cols)[None, :]).reshape(1, grid * grid, 1, 1)
     return (hist.reshape(n, grid * grid, c, bins) / area).reshape(n, -1).astype(np.float32)
+
+
+@njit(cache=True, nogil=True, boundscheck=False)
+def _soft_bin(counts, lo, w_lo, w_hi, bins):  # pragma: no cover - compiled
+    """``counts (m, levels) @ W (levels, bins)`` for the soft-binning matrix W, whose
+    rows have two nonzero weights (``w_lo`` at ``lo``, ``w_hi`` at ``lo + 1``): 2
+    products per level instead of ``bins``. float64, sums in level order."""
+    m, levels = counts.shape
+    out = np.zeros((m, bins))
+    for i in range(m):
+        for q in range(levels):
+            k = counts[i, q]
+            if k:
+                out[i, lo[q]] += k * w_lo[q]
+                if w_hi[q] != 0.0:
+                    out[i, lo[q] + 1] += k * w_hi[q]
+    return out
 
 
 def color_histograms(colors: np.ndarray, bins: int = COLOR_BINS) -> np.ndarray:
