@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from smtmvt.geometry import REF, affine_scale, affine_to_box, box_to_affine
-from smtmvt.warp import inside_fraction, remap_patches, sampling_grid, warp_patches
+from smtmvt.warp import inside_fraction, sampling_grid, warp_patches
 
 
 def test_box_affine_roundtrip():
@@ -136,18 +136,3 @@ def test_any_image_dtype_gives_float32_patches():
         got = warp_patches(img, params, (9, 11))
         assert got.dtype == np.float32
         np.testing.assert_array_equal(got, ref)
-
-
-def test_four_channel_remap_equals_one_remap_per_channel():
-    """The tracker remaps RGB and the raw gray plane as one 4-channel stack
-    (Tracker._patches): per channel that must be the values of separate remaps."""
-    rng = np.random.default_rng(12)
-    rgb = rng.random((60, 80, 3), dtype=np.float32)
-    gray = rng.random((60, 80), dtype=np.float32)
-    params = box_to_affine(
-        np.column_stack([rng.uniform(-5, 50, 30), rng.uniform(-5, 30, 30), np.full(30, 20.0), np.full(30, 25.0)])
-    )
-    X, Y = sampling_grid(params, (32, 32))
-    stacked = remap_patches(np.dstack([rgb, gray]), X, Y)
-    np.testing.assert_array_equal(stacked[..., :3], remap_patches(rgb, X, Y))
-    np.testing.assert_array_equal(stacked[..., 3], remap_patches(gray, X, Y))

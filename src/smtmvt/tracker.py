@@ -171,22 +171,13 @@ class Tracker:
 
         with self._timed("warp"):
             X, Y = grid(fs)
-            # RGB and the raw gray plane share the grid and the blur: one remap of
-            # their 4-channel stack gives, per channel, the values of one remap each
-            # (OpenCV's 2-channel remap does not: gray frames keep two remaps)
-            merged = self._needs_raw and frame.color.shape[2] == 3
-            stack = np.dstack([frame.color, frame.gray]) if merged else frame.color
-            colors = remap_patches(smooth(stack, cfg.antialias * step_f), X, Y).reshape(len(params), fs[0], fs[1], -1)
-            raw = None
-            if merged:
-                colors, raw = colors[..., :3], colors[..., 3]
-            elif self._needs_raw:
-                raw = remap_patches(smooth(frame.gray, cfg.antialias * step_f), X, Y)
             patches = Patches(
                 intensity=remap_patches(smooth(frame.normalized, cfg.antialias * step_i), *grid(self._intensity_size)),
                 gray=remap_patches(smooth(frame.normalized, cfg.antialias * step_f), X, Y),
-                color=colors,
-                raw=raw,
+                color=remap_patches(smooth(frame.color, cfg.antialias * step_f), X, Y).reshape(
+                    len(params), fs[0], fs[1], -1
+                ),
+                raw=remap_patches(smooth(frame.gray, cfg.antialias * step_f), X, Y) if self._needs_raw else None,
             )
         return patches
 
