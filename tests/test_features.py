@@ -566,3 +566,29 @@ def test_soft_binning_of_level_counts_equals_the_matrix_product():
     ref = (counts @ soft_binning_matrix()).reshape(7, -1) / (12 * 10)
     assert_allclose(_grid_histograms(colors, 1, 16), ref, rtol=1e-6, atol=1e-7)
     assert _grid_histograms(colors, 1, 16)[0, 0] == 1.0 and _grid_histograms(colors, 1, 16)[1, 15] == 1.0
+
+
+def test_histogram_power_raises_the_color_and_lbp_histograms(gray_patches):
+    """power 0.5 is the Hellinger embedding: the square roots of the histogram values."""
+    rng = np.random.default_rng(10)
+    patches = _make_patches(4, rng)
+    for grid in (1, 2):
+        hist = color_view(patches, grid=grid)
+        assert_allclose(color_view(patches, grid=grid, power=0.5), np.sqrt(hist), rtol=1e-6)
+        assert_array_equal(color_view(patches, grid=grid, power=1.0), hist)
+    lbp_patches = Patches(gray_patches[:, :20, :20], gray_patches, np.zeros(gray_patches.shape + (3,), np.float32))
+    hist = lbp_view(lbp_patches)
+    root = lbp_view(lbp_patches, power=0.5)
+    assert_allclose(root, np.sqrt(hist), rtol=1e-6)
+    assert_allclose((root**2).reshape(-1, 16, 10).sum(axis=2), 1.0, atol=1e-5)
+    for bad in (0.0, -1.0, float("nan")):
+        with pytest.raises(ValueError, match="power"):
+            color_view(patches, power=bad)
+
+
+def test_histogram_power_is_a_checked_tracker_option():
+    from smtmvt import TrackerConfig
+
+    assert TrackerConfig().histogram_power == 1.0
+    with pytest.raises(ValueError, match="histogram_power"):
+        TrackerConfig(histogram_power=0.0)

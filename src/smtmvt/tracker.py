@@ -249,9 +249,9 @@ class Tracker:
         self.timings = defaultdict(float)
         self._intensity_size = intensity_template_size(wb[2], wb[3])  # in the working frame, as the paper
         self._view_options: dict[str, dict[str, Any]] = {
-            "color": {"grid": cfg.color_grid},
+            "color": {"grid": cfg.color_grid, "power": cfg.histogram_power},
             "hog": {"plane": cfg.hog_plane},
-            "lbp": {"radius": cfg.lbp_radius, "plane": cfg.lbp_plane},
+            "lbp": {"radius": cfg.lbp_radius, "plane": cfg.lbp_plane, "power": cfg.histogram_power},
         }
         self._needs_raw = "gray" in (cfg.hog_plane, cfg.lbp_plane)
         # the views from this index on are computed only where the bounds need them

@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["COLOR_BINS", "color_histograms", "color_view", "soft_binning_matrix"]
+__all__ = ["histogram_power", "COLOR_BINS", "color_histograms", "color_view", "soft_binning_matrix"]
 
 COLOR_BINS = 16  # bins per channel
 
@@ -149,7 +149,7 @@ def color_histograms(colors: np.ndarray, bins: int = COLOR_BINS) -> np.ndarray:
     return _grid_histograms(colors, 1, int(bins))
 
 
-def color_view(patches, grid: int = 1) -> np.ndarray:
+def color_view(patches, grid: int = 1, power: float = 1.0) -> np.ndarray:
     """Color histogram view, over the whole patch or per cell of a ``grid x grid`` layout.
 
     Parameters
@@ -163,6 +163,9 @@ def color_view(patches, grid: int = 1) -> np.ndarray:
         similar to the first-frame template as the true box); per cell, the
         histograms keep the colors' layout. Cell ``j`` along an axis of length
         L covers ``[j L // grid, (j + 1) L // grid)``.
+    power : float > 0
+        Each histogram value is raised to this power (0.5: the Hellinger
+        embedding, whose L2 distances weigh small bins more; 1: the histogram).
 
     Returns
     -------
@@ -172,8 +175,17 @@ def color_view(patches, grid: int = 1) -> np.ndarray:
     colors = patches.color
     grid = int(grid)
     if grid == 1:
-        return color_histograms(colors, COLOR_BINS)
+        return histogram_power(color_histograms(colors, COLOR_BINS), power)
     _, h, w, _ = colors.shape
     if not 1 <= grid <= min(h, w):
         raise ValueError(f"color grid must be in [1, {min(h, w)}] for {h}x{w} patches, got {grid}")
-    return _grid_histograms(colors, grid, COLOR_BINS)
+    return histogram_power(_grid_histograms(colors, grid, COLOR_BINS), power)
+
+
+def histogram_power(hist: np.ndarray, power: float) -> np.ndarray:
+    """``hist ** power`` (float32, nonnegative input); ``hist`` itself at power 1."""
+    if not power > 0:
+        raise ValueError(f"histogram power must be > 0, got {power!r}")
+    if power == 1.0:
+        return hist
+    return np.power(hist, np.float32(power), dtype=np.float32)

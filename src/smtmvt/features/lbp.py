@@ -35,6 +35,8 @@ import math
 import numpy as np
 from numba import njit
 
+from .color import histogram_power
+
 __all__ = ["lbp_codes", "lbp_histograms", "lbp_view", "LBP_P", "LBP_R", "LBP_GRID"]
 
 LBP_P = 8
@@ -195,7 +197,7 @@ def lbp_histograms(codes: np.ndarray, n_codes: int, grid: int = LBP_GRID) -> np.
     return hist.reshape(n, -1).astype(np.float32)
 
 
-def lbp_view(patches, radius: float = LBP_R, plane: str = "tan_triggs") -> np.ndarray:
+def lbp_view(patches, radius: float = LBP_R, plane: str = "tan_triggs", power: float = 1.0) -> np.ndarray:
     """LBP view on the Tan-Triggs gray patches (or the raw gray ones).
 
     Parameters
@@ -205,6 +207,8 @@ def lbp_view(patches, radius: float = LBP_R, plane: str = "tan_triggs") -> np.nd
     radius : float
         Radius of the 8 neighbours, pixels of the feature patch (default 1).
     plane : ``"tan_triggs"`` (``patches.gray``, the paper) or ``"gray"`` (``patches.raw``).
+    power : float > 0
+        Histogram values raised to this power (see :func:`smtmvt.features.color.histogram_power`).
 
     Returns
     -------
@@ -212,4 +216,4 @@ def lbp_view(patches, radius: float = LBP_R, plane: str = "tan_triggs") -> np.nd
     0..9) histograms over a 4x4 grid of cells.
     """
     codes = lbp_codes(patches.plane(plane), LBP_P, radius)
-    return lbp_histograms(codes, LBP_P + 2, LBP_GRID)
+    return histogram_power(lbp_histograms(codes, LBP_P + 2, LBP_GRID), power)
