@@ -589,6 +589,6 @@ def test_histogram_power_raises_the_color_and_lbp_histograms(gray_patches):
 def test_histogram_power_is_a_checked_tracker_option():
     from smtmvt import TrackerConfig
 
-    assert TrackerConfig().histogram_power == 1.0
+    assert TrackerConfig().histogram_power == 0.5 and TrackerConfig.paper().histogram_power == 1.0
     with pytest.raises(ValueError, match="histogram_power"):
         TrackerConfig(histogram_power=0.0)

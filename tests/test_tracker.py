@@ -37,9 +37,9 @@ def test_same_seed_same_boxes_other_seed_other_boxes(demo):
 def test_tracks_demo_sequence(demo):
     """The built-in sequence (scale, rotation, illumination, occlusion, blur).
 
-    Measured with the defaults (400 particles, seed 0): mean overlap 0.773 and
-    8 template replacements (frames 4, 10, 23, 56, 65, 70, 74, 78); thresholds
-    set below them with margin (0.05 and 3). A tracker whose
+    Measured with the defaults (400 particles, seed 0): mean overlap 0.779 and
+    7 template replacements (frames 4, 12, 26, 53, 70, 73, 77); thresholds
+    set below them with margin (0.06 and 2). A tracker whose
     template update never replaces a template fails the second assertion.
     """
     t = Tracker(TrackerConfig(seed=0))
@@ -122,14 +122,14 @@ def test_reinit_restarts_on_new_target(demo):
 def test_tracks_real_crossing(otb_dir):
     """OTB Crossing (120 frames); the paper reports 0.78 average overlap.
 
-    Measured 0.825 with the defaults (seed 0); threshold set 0.045 below it.
+    Measured 0.805 with the defaults (seed 0); threshold set 0.045 below it.
     """
     from smtmvt.data import open_sequence
 
     seq = open_sequence(otb_dir / "Crossing")
     boxes = _track([seq[i] for i in range(len(seq))], seq.first_box, TrackerConfig(seed=0))
     overlap = overlap_ratio(boxes, seq.groundtruth)
-    assert overlap.mean() > 0.78, overlap.mean()
+    assert overlap.mean() > 0.76, overlap.mean()
 
 
 def test_prepare_frame_keeps_the_channel_count_it_is_given():
