@@ -168,6 +168,24 @@ def test_comparison_models_track_in_the_same_filter(demo, name, views):
     assert adapter.config.model == name and adapter.config.views == views
 
 
+@pytest.mark.parametrize("name,views", [("mtt", ("intensity",)), ("mtmvt-ls", ("intensity", "color", "hog", "lbp"))])
+def test_comparison_models_code_every_valid_candidate(demo, name, views):
+    """Bounded coding is exact only for SMTMVT's per-candidate model (solvers.BOUNDED_CODING):
+    the comparison models code every valid candidate, and no view is deferred."""
+    t = Tracker(TrackerConfig(model=name, views=views, n_particles=80, seed=0))
+    t.init(demo.frames[0], demo.groundtruth[0])
+    for frame in demo.frames[1:4]:
+        _, detail = t.update_detailed(frame)
+        obs = detail.observation
+        valid = obs.likelihood > 0
+        assert valid.sum() > 40 and obs.coded[valid].all() and obs.complete.all()
+    smtmvt = Tracker(TrackerConfig(n_particles=80, seed=0))
+    smtmvt.init(demo.frames[0], demo.groundtruth[0])
+    for frame in demo.frames[1:4]:
+        _, detail = smtmvt.update_detailed(frame)
+    assert not detail.observation.coded.all()  # SMTMVT does skip candidates here
+
+
 def test_unknown_model_is_rejected():
     with pytest.raises(ValueError, match="model"):
         TrackerConfig(model="nope")

@@ -258,7 +258,7 @@ class Tracker:
         n_first = len(cfg.views)
         while n_first > 0 and cfg.views[n_first - 1] in cfg.deferred_views:
             n_first -= 1
-        self._n_first = n_first if n_first > 0 and cfg.prune_eps > 0 and cfg.model in BOUNDED_CODING else len(cfg.views)
+        self._n_first = n_first if n_first > 0 and self._prune_eps(cfg.n_particles) > 0 else len(cfg.views)
         self._rng = np.random.default_rng(cfg.seed)
         self._state = box_to_affine(wb)
         self._init_state = self._state.copy()
@@ -358,7 +358,7 @@ class Tracker:
             self._code,
             cfg.alpha,
             valid=valid & ~is_probe,
-            eps=min(cfg.prune_eps, 0.5 / n),
+            eps=self._prune_eps(n),
             always=is_probe,
             timed=self._timed,
             deferred=deferred if later else None,

@@ -296,11 +296,12 @@ def _solve_admm(X, D, lam, gamma, tol, max_iter, C0, E0, rho=2.0, beta=0.5, comp
     :func:`smtmvt.likelihood.observe`).
 
     Two engines run the same iteration from the same start
-    (:func:`_admm_start`): ``compiled`` (default) runs the candidates one
-    after the other in a numba loop (:mod:`smtmvt.solvers._admm_kernel`); the
-    numpy engine (:func:`_admm_batched`) runs them batched, dropping the
-    finished ones once they are a fifth of the batch, and is the readable
-    reference the compiled one is tested against.
+    (:func:`_admm_start`), both batched over the candidates still running
+    and dropping the finished ones once they are a fifth of the batch:
+    ``compiled`` (default) is one numba loop
+    (:mod:`smtmvt.solvers._admm_kernel`); the numpy engine
+    (:func:`_admm_batched`) is the readable reference the compiled one is
+    tested against.
     """
     K, N, n = len(X), D[0].shape[1], X[0].shape[1]
     G = np.stack([Dk.T @ Dk for Dk in D])  # (K, N, N)
