@@ -482,6 +482,22 @@ def test_patches_validation():
     assert converted.intensity.dtype == np.float32
     with pytest.raises(dataclasses.FrozenInstanceError):
         converted.gray = ok.gray
+    with pytest.raises(ValueError, match="Patches.raw has shape"):
+        Patches(ok.intensity, ok.gray, ok.color, ok.gray[:, :16])
+
+
+def test_patches_without_a_plane_name_it_when_a_view_needs_it():
+    """A plane no view reads may be left out (None); a view that reads it says which one is missing."""
+    rng = np.random.default_rng(16)
+    ok = _make_patches(3, rng)
+    no_gray = Patches(ok.intensity, None, ok.color, raw=ok.gray)
+    assert no_gray.subset([0, 2]).gray is None and no_gray.subset([0, 2]).raw.shape == (2, 32, 32)
+    (hog,) = extract_views(no_gray, ("hog",), {"hog": {"plane": "gray"}})
+    assert_array_equal(hog, extract_views(ok, ("hog",))[0])  # raw here holds the same values as gray
+    with pytest.raises(ValueError, match="Patches.gray"):
+        extract_views(no_gray, ("hog",))
+    with pytest.raises(ValueError, match="Patches.raw"):
+        extract_views(Patches(ok.intensity, ok.gray, ok.color), ("lbp",), {"lbp": {"plane": "gray"}})
 
 
 # --------------------------------------------------------------------------- normalize_columns

@@ -173,7 +173,9 @@ class Tracker:
             X, Y = grid(fs)
             patches = Patches(
                 intensity=remap_patches(smooth(frame.normalized, cfg.antialias * step_i), *grid(self._intensity_size)),
-                gray=remap_patches(smooth(frame.normalized, cfg.antialias * step_f), X, Y),
+                gray=remap_patches(smooth(frame.normalized, cfg.antialias * step_f), X, Y)
+                if self._needs_gray
+                else None,
                 color=remap_patches(smooth(frame.color, cfg.antialias * step_f), X, Y).reshape(
                     len(params), fs[0], fs[1], -1
                 ),
@@ -253,7 +255,13 @@ class Tracker:
             "hog": {"plane": cfg.hog_plane},
             "lbp": {"radius": cfg.lbp_radius, "plane": cfg.lbp_plane, "power": cfg.histogram_power},
         }
-        self._needs_raw = "gray" in (cfg.hog_plane, cfg.lbp_plane)
+        # the feature-size gray planes the views read (only those are warped; a
+        # registered view of another name may read either)
+        planes = set()
+        for view in cfg.views:
+            read = {"hog": {cfg.hog_plane}, "lbp": {cfg.lbp_plane}, "intensity": set(), "color": set()}
+            planes |= read.get(view, {"gray", "tan_triggs"})
+        self._needs_raw, self._needs_gray = "gray" in planes, "tan_triggs" in planes
         # the views from this index on are computed only where the bounds need them
         n_first = len(cfg.views)
         while n_first > 0 and cfg.views[n_first - 1] in cfg.deferred_views:

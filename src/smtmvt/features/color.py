@@ -59,27 +59,43 @@ def soft_binning_matrix(bins: int = COLOR_BINS, levels: int = _LEVELS) -> np.nda
 
 
 @njit(cache=True, nogil=True, boundscheck=False)
-def _cell_level_counts(colors, cell_of_row, cell_of_col, grid, counts):  # pragma: no cover - compiled
-    """``counts[patch, cell, channel, level] +=`` 1 per pixel, ``cell = cell_of_row[y] * grid +
-    cell_of_col[x]``, levels ``round(255 v)`` of ``v`` clipped to [0, 1].
+def _cell_histograms(colors, cell_of_row, cell_of_col, grid, lo, w_lo, w_hi, out):  # pragma: no cover - compiled
+    """Soft histograms ``out[patch, cell, channel, bin]`` (float64, not yet divided by
+    the cell area), one patch at a time (its level counts stay in cache).
 
-    The rounding is done in float32 as ``floor(clip(255 v + 0.5, 0.5, 255.5))``
-    (round half up; clipping after the scale equals clipping to [0, 1] first;
-    the value is positive, so truncation is the floor).
+    Each pixel's level ``round(255 v)`` of ``v`` clipped to [0, 1] is counted
+    (``cell = cell_of_row[y] * grid + cell_of_col[x]``). The rounding is done in
+    float32 as ``floor(clip(255 v + 0.5, 0.5, 255.5))`` (round half up;
+    clipping after the scale equals clipping to [0, 1] first; the value is
+    positive, so truncation is the floor). The counts are then mapped to the
+    bins by the soft-binning matrix W, whose rows have two nonzero weights
+    (``w_lo`` at ``lo``, ``w_hi`` at ``lo + 1``): 2 products per level instead
+    of ``bins``, each bin summed in level order.
     """
     n, h, w, c = colors.shape
-    scale = np.float32(_LEVELS - 1)
+    levels = lo.shape[0]
+    scale = np.float32(levels - 1)
     half = np.float32(0.5)
-    top = np.float32(_LEVELS - 0.5)
+    top = np.float32(levels - 0.5)
+    counts = np.zeros((out.shape[1], c, levels), dtype=np.int32)
     for k in range(n):
+        counts[:] = 0
         for y in range(h):
             base = cell_of_row[y] * grid
             for x in range(w):
                 cell = base + cell_of_col[x]
                 for ch in range(c):
                     level = np.int64(min(max(colors[k, y, x, ch] * scale + half, half), top))
-                    counts[k, cell, ch, level] += 1
-    return counts
+                    counts[cell, ch, level] += 1
+        for cell in range(out.shape[1]):
+            for ch in range(c):
+                for q in range(levels):
+                    m = counts[cell, ch, q]
+                    if m:
+                        out[k, cell, ch, lo[q]] += m * w_lo[q]
+                        if w_hi[q] != 0.0:
+                            out[k, cell, ch, lo[q] + 1] += m * w_hi[q]
+    return out
 
 
 def _grid_histograms(colors: np.ndarray, grid: int, bins: int) -> np.ndarray:
@@ -91,32 +107,15 @@ def _grid_histograms(colors: np.ndarray, grid: int, bins: int) -> np.ndarray:
     cols = (np.arange(grid + 1) * w) // grid
     cell_of_row = np.searchsorted(rows, np.arange(h), side="right") - 1
     cell_of_col = np.searchsorted(cols, np.arange(w), side="right") - 1
-    counts = np.zeros((n, grid * grid, c, _LEVELS), dtype=np.int32)
-    _cell_level_counts(np.ascontiguousarray(colors, dtype=np.float32), cell_of_row, cell_of_col, grid, counts)
     W = soft_binning_matrix(bins, _LEVELS)
     lo = np.argmax(W > 0, axis=1)  # each level's first bin; the second is lo + 1 (weight 0 past the end)
     w_lo = W[np.arange(_LEVELS), lo]
     w_hi = np.where(lo + 1 < bins, W[np.arange(_LEVELS), np.minimum(lo + 1, bins - 1)], 0.0)
-    hist = _soft_bin(counts.reshape(-1, _LEVELS), lo, w_lo, w_hi, bins)
+    hist = np.zeros((n, grid * grid, c, bins))
+    colors = np.ascontiguousarray(colors, dtype=np.float32)
+    _cell_histograms(colors, cell_of_row, cell_of_col, grid, lo, w_lo, w_hi, hist)
     area = (np.diff(rows)[:, None] * np.diff(cols)[None, :]).reshape(1, grid * grid, 1, 1)
-    return (hist.reshape(n, grid * grid, c, bins) / area).reshape(n, -1).astype(np.float32)
-
-
-@njit(cache=True, nogil=True, boundscheck=False)
-def _soft_bin(counts, lo, w_lo, w_hi, bins):  # pragma: no cover - compiled
-    """``counts (m, levels) @ W (levels, bins)`` for the soft-binning matrix W, whose
-    rows have two nonzero weights (``w_lo`` at ``lo``, ``w_hi`` at ``lo + 1``): 2
-    products per level instead of ``bins``. float64, sums in level order."""
-    m, levels = counts.shape
-    out = np.zeros((m, bins))
-    for i in range(m):
-        for q in range(levels):
-            k = counts[i, q]
-            if k:
-                out[i, lo[q]] += k * w_lo[q]
-                if w_hi[q] != 0.0:
-                    out[i, lo[q] + 1] += k * w_hi[q]
-    return out
+    return (hist / area).reshape(n, -1).astype(np.float32)
 
 
 def color_histograms(colors: np.ndarray, bins: int = COLOR_BINS) -> np.ndarray:

@@ -57,53 +57,53 @@ class Patches:
     intensity : (n, th, tw) float32
         Tan-Triggs normalized gray, warped at the intensity template size
         (:func:`smtmvt.features.intensity_template_size`).
-    gray : (n, fh, fw) float32
+    gray : (n, fh, fw) float32 or None
         Tan-Triggs normalized gray, warped at the feature size (default 32x32);
-        input of the HOG and LBP views. HOG needs ``fh, fw >= 16``.
+        input of the HOG and LBP views asked for ``plane="tan_triggs"`` (the
+        paper). HOG needs ``fh, fw >= 16``. None when no view reads it.
     color : (n, fh, fw, C) float32
         Raw frame colors scaled to [0, 1], C = 3 (RGB) or C = 1 (gray frames),
-        at the same size as ``gray``; input of the color view.
+        at the feature size; input of the color view.
     raw : (n, fh, fw) float32 or None
         The gray frame *before* Tan-Triggs, at the feature size; input of the
-        HOG and LBP views when they are asked for ``plane="gray"``.
+        HOG and LBP views when they are asked for ``plane="gray"``. None when
+        no view reads it.
 
     Arrays are converted to C-contiguous float32 (no copy when they already
     are); shapes are checked, values are not.
     """
 
     intensity: np.ndarray
-    gray: np.ndarray
+    gray: np.ndarray | None
     color: np.ndarray
     raw: np.ndarray | None = None
 
     def __post_init__(self):
         intensity = _as_float32("intensity", self.intensity, 3, "(n, th, tw)")
-        gray = _as_float32("gray", self.gray, 3, "(n, fh, fw)")
         color = _as_float32("color", self.color, 4, "(n, fh, fw, C)")
-        if self.raw is not None:
-            raw = _as_float32("raw", self.raw, 3, "(n, fh, fw)")
-            if raw.shape != gray.shape:
-                raise ValueError(f"Patches.raw has shape {raw.shape}, Patches.gray {gray.shape}")
-            object.__setattr__(self, "raw", raw)
         n = intensity.shape[0]
         if n < 1:
             raise ValueError("Patches need at least one patch (n >= 1)")
-        if gray.shape[0] != n or color.shape[0] != n:
+        if color.shape[0] != n:
             raise ValueError(
-                "Patches arrays disagree on the number of patches n: "
-                f"intensity {intensity.shape[0]}, gray {gray.shape[0]}, color {color.shape[0]}"
+                f"Patches arrays disagree on the number of patches n: intensity {n}, color {color.shape[0]}"
             )
-        if min(intensity.shape[1:]) < 1 or min(gray.shape[1:]) < 1:
-            raise ValueError(f"empty patches: intensity {intensity.shape}, gray {gray.shape}")
-        if color.shape[1:3] != gray.shape[1:3]:
-            raise ValueError(
-                f"Patches.color is {color.shape[1]}x{color.shape[2]} px but Patches.gray is "
-                f"{gray.shape[1]}x{gray.shape[2]}; both are warped at the feature size"
-            )
+        if min(intensity.shape[1:]) < 1 or min(color.shape[1:3]) < 1:
+            raise ValueError(f"empty patches: intensity {intensity.shape}, color {color.shape}")
         if color.shape[3] not in (1, 3):
             raise ValueError(f"Patches.color must have C = 3 (RGB) or C = 1 (gray) channels, got {color.shape[3]}")
+        for name in ("gray", "raw"):
+            value = getattr(self, name)
+            if value is None:
+                continue
+            plane = _as_float32(name, value, 3, "(n, fh, fw)")
+            if plane.shape != color.shape[:3]:
+                raise ValueError(
+                    f"Patches.{name} has shape {plane.shape} but Patches.color {color.shape}; "
+                    "both are warped at the feature size"
+                )
+            object.__setattr__(self, name, plane)
         object.__setattr__(self, "intensity", intensity)
-        object.__setattr__(self, "gray", gray)
         object.__setattr__(self, "color", color)
 
     @property
@@ -114,12 +114,15 @@ class Patches:
     def subset(self, index) -> Patches:
         """The patches selected by ``index`` (an int, slice, mask or index array)."""
         index = np.atleast_1d(np.arange(self.n)[index])
+        gray = None if self.gray is None else self.gray[index]
         raw = None if self.raw is None else self.raw[index]
-        return Patches(self.intensity[index], self.gray[index], self.color[index], raw)
+        return Patches(self.intensity[index], gray, self.color[index], raw)
 
     def plane(self, name: str) -> np.ndarray:
         """The feature-size gray patches of ``name``: ``"tan_triggs"`` (``gray``) or ``"gray"`` (``raw``)."""
         if name == "tan_triggs":
+            if self.gray is None:
+                raise ValueError("Patches.gray (the Tan-Triggs plane at the feature size) was not given")
             return self.gray
         if name == "gray":
             if self.raw is None:
