@@ -68,3 +68,25 @@ def test_translation_power_half_grows_the_search_as_the_root_of_the_size():
     sc = affine_scale(p0[:1])[0]  # 4
     p1 = propagate(p0, (0, 0, 0, 0, 4.0, 4.0), rng, translation_power=0.5)
     assert np.std(p1[:, 4] - p0[:, 4]) == pytest.approx(4.0 * np.sqrt(sc), rel=0.03)
+
+
+def test_pull_shape_moves_aspect_and_skew_only():
+    from smtmvt.geometry import affine_to_box, box_to_affine
+    from smtmvt.motion import pull_shape
+
+    ref = box_to_affine(np.array([10.0, 10.0, 30.0, 60.0]))
+    ref[1], ref[2] = 0.02, -0.01
+    rng = np.random.default_rng(3)
+    states = propagate(np.repeat(ref[None], 30, axis=0), [0.2, 0.05, 0.05, 0.2, 5.0, 5.0], rng)
+    np.testing.assert_array_equal(pull_shape(states, ref, 0.0), states)
+    for strength in (0.25, 1.0):
+        pulled = pull_shape(states, ref, strength)
+        # position and scale a11 * a22 are kept
+        np.testing.assert_allclose(pulled[:, 4:], states[:, 4:])
+        np.testing.assert_allclose(pulled[:, 0] * pulled[:, 3], states[:, 0] * states[:, 3])
+        # the log-aspect and the skew move the given fraction of the way to the reference's
+        r, r_ref, r_new = (0.5 * np.log(p[..., 3] / p[..., 0]) for p in (states, ref, pulled))
+        np.testing.assert_allclose(r_new - r, strength * (r_ref - r), atol=1e-12)
+        np.testing.assert_allclose(pulled[:, 1:3] - states[:, 1:3], strength * (ref[1:3] - states[:, 1:3]), atol=1e-15)
+    full = affine_to_box(pull_shape(states, ref, 1.0))
+    np.testing.assert_allclose(full[:, 3] / full[:, 2], 2.0, rtol=1e-3)  # the reference's 60 / 30

@@ -145,6 +145,10 @@ class TrackerConfig:
         chosen box (0: a pure random walk, as L1-APG and MTT). Default 0.5
         (measured in the table above; 0.25 gave 0.568 against 0.593, Shaking
         0.64 -> 0.35 and Subway 0.64 -> 0.49, Walking2 0.34 -> 0.46).
+    shape_pull : float in [0, 1]
+        Mean reversion of the particles' shape (aspect ratio and skew) toward
+        the first frame's box (:func:`smtmvt.motion.pull_shape`), applied
+        before the noise each frame; 0: a free random walk (the paper).
     feature_size : (int, int)
         Height, width (pixels) to which each candidate is warped for the HOG,
         LBP and color views.
@@ -271,6 +275,7 @@ class TrackerConfig:
     narrow_scale: float = 0.25
     estimate: str = "best"
     velocity: float = 0.5
+    shape_pull: float = 0.0
     feature_size: tuple = (32, 32)
     model: str = "smtmvt"
     solver: str = "admm"
@@ -316,6 +321,7 @@ class TrackerConfig:
             "lbp_radius": self.lbp_radius > 0,
             "histogram_power": self.histogram_power > 0,
             "velocity": 0 <= self.velocity <= 1,
+            "shape_pull": 0 <= self.shape_pull <= 1,
             "estimate": self.estimate in ("best", "mean"),
             "fixed_templates": 1 <= int(self.fixed_templates) <= int(self.n_templates),
             "narrow_fraction": 0 <= self.narrow_fraction <= 1,
@@ -367,6 +373,7 @@ class TrackerConfig:
             narrow_scale=0.25,
             estimate="best",
             velocity=0.0,
+            shape_pull=0.0,
             feature_size=(32, 32),
             model="smtmvt",
             solver="admm",

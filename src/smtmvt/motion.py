@@ -16,7 +16,7 @@ import numpy as np
 
 from .geometry import affine_scale
 
-__all__ = ["propagate", "resample"]
+__all__ = ["propagate", "pull_shape", "resample"]
 
 
 def propagate(
@@ -55,6 +55,40 @@ def propagate(
     p[:, 1] += s[1] * sc[:, 0] * noise[:, 1]
     p[:, 2] += s[2] * sc[:, 0] * noise[:, 2]
     p[:, 4:] += s[4:] * sc**translation_power * noise[:, 4:]
+    return p
+
+
+def pull_shape(params, reference, strength: float) -> np.ndarray:
+    """Move each state's shape a fraction ``strength`` of the way back to ``reference``'s.
+
+    The shape is the aspect ratio and the skew, what the random walk changes
+    besides the scale and the position: with ``r = log(a22 / a11) / 2``, each
+    state's ``r`` moves to ``r + strength (r_ref - r)`` at a fixed scale
+    ``a11 a22``, and the off-diagonal terms to ``a12 + strength (a12_ref -
+    a12)`` (likewise ``a21``). Position and scale are untouched. Applied every
+    frame before the noise, it is a mean-reverting walk of the shape: the box's
+    height and width can still follow the target, but a slow drift of the
+    aspect (the likelihood preferring a part of the target) is pulled back.
+
+    Parameters
+    ----------
+    params : (n, 6) affine states with ``a11, a22 > 0``.
+    reference : (6,) the reference state (the first frame's).
+    strength : in [0, 1]; 0 returns the states unchanged.
+
+    Returns
+    -------
+    (n, 6) float64 states.
+    """
+    p = np.array(params, dtype=np.float64, copy=True, ndmin=2)
+    if strength == 0:
+        return p
+    ref = np.asarray(reference, dtype=np.float64).reshape(6)
+    r = 0.5 * np.log(p[:, 3] / p[:, 0])
+    dr = strength * (0.5 * np.log(ref[3] / ref[0]) - r)
+    p[:, 0] *= np.exp(-dr)
+    p[:, 3] *= np.exp(dr)
+    p[:, 1:3] += strength * (ref[1:3] - p[:, 1:3])
     return p
 
 

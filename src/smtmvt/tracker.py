@@ -34,7 +34,7 @@ from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
 from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine
 from .likelihood import Observation, observe
-from .motion import propagate, resample
+from .motion import propagate, pull_shape, resample
 from .preprocess import (
     TAN_TRIGGS_REACH,
     PreparedFrame,
@@ -368,6 +368,8 @@ class Tracker:
         work_shape = self._working_shape(frame, f"frame {self._frame_index}")
         with self._timed("motion"):
             particles = resample(self._particles, self._weights, cfg.n_particles)
+            if cfg.shape_pull:
+                particles = pull_shape(particles, self._init_state, cfg.shape_pull)
             shift = cfg.velocity * self._velocity if cfg.velocity else None
             particles = propagate(particles, cfg.affine_std, self._rng, shift, self._spread, cfg.translation_power)
         n = len(particles)
