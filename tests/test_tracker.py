@@ -231,3 +231,14 @@ def test_compiled_solver_tracks_like_the_numpy_engine(demo, monkeypatch):
     batched = _track(demo.frames[:30], demo.groundtruth[0], config)
     assert np.max(np.abs(compiled - batched)) <= 1e-6
     assert np.ptp(compiled[:, 0]) > 5  # the target moved: a real comparison
+
+
+def test_full_shape_pull_keeps_the_first_boxes_aspect(demo):
+    """With shape_pull 1 every frame starts from the first box's aspect ratio and skew: the
+    chosen box's aspect differs from it by one frame's noise only (std 1.4% in log aspect):
+    measured 0.037 at most over 25 demo frames, against 0.136 without the pull."""
+    boxes = _track(demo.frames[:25], demo.groundtruth[0], FAST.replace(shape_pull=1.0))
+    aspect = np.log(boxes[:, 3] / boxes[:, 2])
+    assert np.abs(aspect - aspect[0]).max() < 0.06
+    with pytest.raises(ValueError, match="shape_pull"):
+        TrackerConfig(shape_pull=1.5)
