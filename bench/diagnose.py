@@ -47,6 +47,7 @@ import numpy as np
 from smtmvt import Tracker, TrackerConfig, open_sequence
 from smtmvt.evaluation.metrics import overlap_ratio
 from smtmvt.geometry import box_to_affine
+from smtmvt.preprocess import prepare_frame
 from smtmvt.solvers import reconstruction_residual
 
 FAIL = 0.5
@@ -73,7 +74,8 @@ def residuals_under(tracker: Tracker, frame, boxes, dictionaries) -> np.ndarray:
     Uses the tracker's own views and observation model (private members: this
     is a diagnosis tool, it reads the tracker's internals without changing them).
     """
-    X = tracker.views_of(frame, box_to_affine(tracker._to_work(np.asarray(boxes, dtype=np.float64))).reshape(-1, 6))
+    prepared = prepare_frame(frame, "frame", tracker._channels)
+    X = tracker._views(prepared, box_to_affine(np.asarray(boxes, dtype=np.float64)).reshape(-1, 6))
     C, _ = tracker._code(X, dictionaries)
     return reconstruction_residual(X, dictionaries, C)
 

@@ -16,7 +16,7 @@ for the sum of the views (the paper's likelihood, up to the coding):
 - ``rho``: the Spearman correlation of ``-residual`` with the overlap over all
   candidates (how well the score ranks them).
 
-It uses the tracker's internals (``views_of``, ``_templates``): a
+It uses the tracker's internals (``_prepare``, ``_views``, ``_templates``): a
 diagnosis tool, like ``diagnose.py``, not an API.
 """
 
@@ -49,9 +49,11 @@ def rank_views(seq, config: TrackerConfig, frames: range, n: int = 400) -> np.nd
         if not np.all(np.isfinite(gt)) or gt[2] <= 0 or gt[3] <= 0:
             continue
         t._state = box_to_affine(t._to_work(gt[None]))[0]
+        plane_scale = t._plane_scale()
+        prepared = t._prepare(seq[f], f"frame {f}", t._channels, plane_scale)
         start = np.repeat(t._state[None], n, axis=0)
         particles = propagate(start, config.affine_std, rng, None, None, config.translation_power)
-        X = t.views_of(seq[f], particles, f"frame {f}")
+        X = t._views(prepared, particles, plane_scale)
         D = t._templates.dictionaries
         boxes = t._from_work(np.array([affine_to_box(p) for p in particles]))
         iou = overlap_ratio(boxes, np.repeat(gt[None], n, axis=0))

@@ -32,20 +32,10 @@ from threadpoolctl import ThreadpoolController
 
 from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
-from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine
+from .geometry import affine_scale, affine_to_box, box_inside_fraction, box_to_affine
 from .likelihood import Observation, observe
 from .motion import propagate, pull_shape, resample
-from .preprocess import (
-    TAN_TRIGGS_REACH,
-    PreparedFrame,
-    color_channels,
-    crop_window,
-    prepare_frame,
-    resize_frame,
-    smooth,
-    smooth_reach,
-    to_unit_range,
-)
+from .preprocess import PreparedFrame, prepare_frame, resize_frame, smooth, to_unit_range
 from .solvers import BOUNDED_CODING, SOLVERS, solve_smtmvt
 from .templates import TemplateSet
 from .warp import inside_fraction, remap_patches, sampling_grid
@@ -147,61 +137,49 @@ class Tracker:
         finally:
             self.timings[stage] += time.perf_counter() - t0
 
-    def _views(self, frame: PreparedFrame, params: np.ndarray) -> list:
+    def _views(self, frame: PreparedFrame, params: np.ndarray, plane_scale: float = 1.0) -> list:
         """Candidate views ``[(d_k, m) float32]`` of the states ``params (m, 6)`` (see :meth:`_patches`)."""
-        return self._extract(self._patches(frame, params), self.config.views)
-
-    def views_of(self, frame: np.ndarray, params: np.ndarray, where: str = "frame") -> list:
-        """The K views ``[(d_k, m) float32]`` of the states ``params (m, 6)`` (working frame) in
-        ``frame``, prepared as :meth:`update` prepares it; the tracker's state is unchanged
-        (for the tools of ``bench/``)."""
-        params = np.atleast_2d(np.asarray(params, dtype=np.float64))
-        with self._blas_limit():
-            return self._views(self._prepare(frame, where, self._channels, self._plane_scale(), params), params)
+        return self._extract(self._patches(frame, params, plane_scale), self.config.views)
 
     def _extract(self, patches: Patches, views) -> list:
         with self._timed("features"):
             return extract_views(patches, views, self._view_options)
 
-    def _smoothing(self, plane_scale) -> tuple[float, float]:
-        """Antialiasing sigmas (plane pixels) of the intensity and the feature-size planes.
+    def _patches(self, frame: PreparedFrame, params: np.ndarray, plane_scale: float = 1.0) -> Patches:
+        """The patches of the states ``params (m, 6)``.
 
-        With ``config.antialias`` > 0 each plane is smoothed by a Gaussian of
-        ``antialias`` times the sampling step of the current target (its size
-        on the plane over the patch size), so that sampling it on the patch
-        grid does not alias. ``plane_scale`` is (sx, sy), plane pixels per
-        working-frame pixel.
-        """
-        cfg, fs = self.config, self.config.feature_size
-        w, h = self._work_box[2] * plane_scale[0], self._work_box[3] * plane_scale[1]
-        step_i = max(w / self._intensity_size[1], h / self._intensity_size[0])
-        step_f = max(w / fs[1], h / fs[0])
-        return cfg.antialias * step_i, cfg.antialias * step_f
-
-    def _patches(self, frame: PreparedFrame, params: np.ndarray) -> Patches:
-        """The patches of the states ``params (m, 6)`` (working-frame coordinates).
-
-        ``frame``'s planes may be a window of the working frame, resized (see
-        ``config.scale_normalize``): the sampling grids are mapped onto them by
-        :meth:`PreparedFrame.to_plane` (pixel edges to pixel edges). Each plane
-        is first smoothed (:meth:`_smoothing`).
+        ``frame``'s planes may be the working frame resized by ``plane_scale``
+        (plane pixels per working-frame pixel, see ``config.scale_normalize``):
+        the sampling grids are mapped onto them (pixel edges to pixel edges).
+        With ``config.antialias`` > 0 each plane is first smoothed by a Gaussian
+        of ``antialias`` times the sampling step of the current target (its
+        size on the plane over the patch size), so that sampling it on the
+        patch grid does not alias.
         """
         cfg = self.config
         fs = cfg.feature_size
-        sigma_i, sigma_f = self._smoothing(frame.scale)
-
-        on_plane = frame.to_plane(params)
+        w, h = self._work_box[2] * plane_scale, self._work_box[3] * plane_scale
+        step_i = max(w / self._intensity_size[1], h / self._intensity_size[0])
+        step_f = max(w / fs[1], h / fs[0])
 
         def grid(size):
-            return sampling_grid(on_plane, size)
+            X, Y = sampling_grid(params, size)
+            if plane_scale != 1.0:
+                X = (X + np.float32(0.5)) * np.float32(plane_scale) - np.float32(0.5)
+                Y = (Y + np.float32(0.5)) * np.float32(plane_scale) - np.float32(0.5)
+            return X, Y
 
         with self._timed("warp"):
             X, Y = grid(fs)
             patches = Patches(
-                intensity=remap_patches(smooth(frame.normalized, sigma_i), *grid(self._intensity_size)),
-                gray=remap_patches(smooth(frame.normalized, sigma_f), X, Y) if self._needs_gray else None,
-                color=remap_patches(smooth(frame.color, sigma_f), X, Y).reshape(len(params), fs[0], fs[1], -1),
-                raw=remap_patches(smooth(frame.gray, sigma_f), X, Y) if self._needs_raw else None,
+                intensity=remap_patches(smooth(frame.normalized, cfg.antialias * step_i), *grid(self._intensity_size)),
+                gray=remap_patches(smooth(frame.normalized, cfg.antialias * step_f), X, Y)
+                if self._needs_gray
+                else None,
+                color=remap_patches(smooth(frame.color, cfg.antialias * step_f), X, Y).reshape(
+                    len(params), fs[0], fs[1], -1
+                ),
+                raw=remap_patches(smooth(frame.gray, cfg.antialias * step_f), X, Y) if self._needs_raw else None,
             )
         return patches
 
@@ -262,9 +240,10 @@ class Tracker:
             self._scale = np.ones(2)
         else:
             self._scale = np.array([cfg.frame_size[0] / shape[1], cfg.frame_size[1] / shape[0]])
-        self._channels = color_channels(frame, "init frame")
+        prepared = self._prepare(frame, "init frame", None)
+        self._channels = prepared.color.shape[2]
         wb = self._to_work(b)
-        inside = box_inside_fraction(wb, self._working_shape(frame, "init frame"))
+        inside = box_inside_fraction(wb, prepared.shape)
         if inside < 0.25:
             raise ValueError(
                 f"init: box {tuple(b)} is mostly outside the {shape[1]}x{shape[0]} image ({inside:.0%} inside)"
@@ -300,7 +279,6 @@ class Tracker:
         self._work_box = tuple(float(v) for v in wb)
         self._box = tuple(float(v) for v in b)
         t_states = self._template_states(self._state)
-        prepared = self._prepare(frame, "init frame", self._channels, 1.0, t_states)
         self._templates = TemplateSet([np.array(v, dtype=np.float32) for v in self._views(prepared, t_states)])
         self._particles = np.repeat(self._state[None], cfg.n_particles, axis=0)
         self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
@@ -309,29 +287,16 @@ class Tracker:
         self._initialized = True
 
     # -- the working frame (config.frame_size) ------------------------------
-    def _working_shape(self, frame, where: str = "frame") -> tuple[int, int]:
-        """(H, W) of the working frame of ``frame`` (``config.frame_size``, or the frame's own)."""
-        shape = np.shape(frame)
-        if len(shape) not in (2, 3):
-            raise ValueError(f"{where}: expected an (H, W) or (H, W, 3) image, got shape {shape}")
-        if self.config.frame_size is not None:
-            return int(self.config.frame_size[1]), int(self.config.frame_size[0])
-        return int(shape[0]), int(shape[1])
-
-    def _prepare(self, frame, where: str, channels, plane_scale: float, states) -> PreparedFrame:
-        """The planes of the window of the working frame that the patches of ``states (m, 6)`` read.
-
-        The window (:func:`smtmvt.preprocess.crop_window`) bounds every sample
-        point of the states' patches, grown by the reach of the antialiasing
-        blur, of Tan-Triggs' filters and of the bilinear samples; it is
-        resized by ``plane_scale`` (plane pixels per working-frame pixel).
-        """
+    def _prepare(self, frame, where: str, channels, plane_scale: float = 1.0):
+        """The frame's planes at ``plane_scale`` times the working frame's size."""
         size = self.config.frame_size
-        if size is not None:
-            frame = resize_frame(to_unit_range(frame, where), size)
-        reach = TAN_TRIGGS_REACH + smooth_reach(max(self._smoothing((plane_scale, plane_scale)))) + 2
-        window = crop_window(affine_extent(states), reach / plane_scale, self._working_shape(frame))
-        return prepare_frame(frame, where, channels, window, plane_scale)
+        if size is not None or plane_scale != 1.0:
+            f = to_unit_range(frame, where)
+            if size is None:
+                size = (f.shape[1], f.shape[0])
+            size = (max(2, int(round(size[0] * plane_scale))), max(2, int(round(size[1] * plane_scale))))
+            frame = resize_frame(f, size)
+        return prepare_frame(frame, where, channels)
 
     def _plane_scale(self) -> float:
         """Plane pixels per working pixel for the next frame (``config.scale_normalize``)."""
@@ -365,7 +330,11 @@ class Tracker:
             raise RuntimeError("update called before init")
         cfg = self.config
         self._frame_index += 1
-        work_shape = self._working_shape(frame, f"frame {self._frame_index}")
+        with self._timed("preprocess"):
+            plane_scale = self._plane_scale()
+            prepared = self._prepare(frame, f"frame {self._frame_index}", self._channels, plane_scale)
+            work_shape = (int(round(prepared.shape[0] / plane_scale)), int(round(prepared.shape[1] / plane_scale)))
+
         with self._timed("motion"):
             particles = resample(self._particles, self._weights, cfg.n_particles)
             if cfg.shape_pull:
@@ -375,14 +344,7 @@ class Tracker:
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
-        where, plane_scale = f"frame {self._frame_index}", self._plane_scale()
-        with self._timed("preprocess"):
-            prepared = self._prepare(frame, where, self._channels, plane_scale, particles)
-        patches = self._patches(prepared, particles)
-        if len(states) > n:
-            # the probes' own window (it also holds the particles'), so that they cannot change the particles'
-            probe_frame = self._prepare(frame, where, self._channels, plane_scale, states)
-            patches = patches.join(self._patches(probe_frame, states[n:]))
+        patches = self._patches(prepared, states, plane_scale)
         # views computed for every candidate, and the views deferred (likelihood.observe)
         now, later = cfg.views[: self._n_first], cfg.views[self._n_first :]
         X = self._extract(patches, now)

@@ -118,21 +118,6 @@ class Patches:
         raw = None if self.raw is None else self.raw[index]
         return Patches(self.intensity[index], gray, self.color[index], raw)
 
-    def join(self, other: Patches) -> Patches:
-        """These patches followed by ``other``'s (same sizes and planes)."""
-
-        def cat(a, b, name):
-            if (a is None) != (b is None):
-                raise ValueError(f"cannot join Patches with and without {name}")
-            return None if a is None else np.concatenate([a, b])
-
-        return Patches(
-            cat(self.intensity, other.intensity, "intensity"),
-            cat(self.gray, other.gray, "gray"),
-            cat(self.color, other.color, "color"),
-            cat(self.raw, other.raw, "raw"),
-        )
-
     def plane(self, name: str) -> np.ndarray:
         """The feature-size gray patches of ``name``: ``"tan_triggs"`` (``gray``) or ``"gray"`` (``raw``)."""
         if name == "tan_triggs":
