@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["REF", "box_to_affine", "affine_to_box", "affine_scale", "box_inside_fraction"]
+__all__ = ["REF", "box_to_affine", "affine_to_box", "affine_extent", "affine_scale", "box_inside_fraction"]
 
 #: Size of the template reference frame, in template units.
 REF = 32.0
@@ -81,6 +81,32 @@ def affine_to_box(params) -> np.ndarray:
     y = p[:, 5] - (h - 1.0) / 2.0
     out = np.stack([x, y, w, h], axis=1)
     return out[0] if single else out
+
+
+def affine_extent(params) -> tuple[float, float, float, float]:
+    """Bounding box ``(x0, y0, x1, y1)`` (pixel coordinates) of the template squares of all states.
+
+    The corners ``u, v = +-REF/2`` of each state's template frame are mapped by
+    its affine transform; every point a patch samples (see
+    :func:`smtmvt.warp.sampling_grid`) lies inside this box.
+
+    Parameters
+    ----------
+    params : (6,) or (m, 6) affine states, m >= 1.
+    """
+    p = np.atleast_2d(np.asarray(params, dtype=np.float64))
+    if len(p) == 0:
+        raise ValueError("affine_extent needs at least one state")
+    half = REF / 2.0
+    # |a u + b v| <= (|a| + |b|) REF/2 over the square, reached at a corner
+    rx = (np.abs(p[:, 0]) + np.abs(p[:, 1])) * half
+    ry = (np.abs(p[:, 2]) + np.abs(p[:, 3])) * half
+    return (
+        float(np.min(p[:, 4] - rx)),
+        float(np.min(p[:, 5] - ry)),
+        float(np.max(p[:, 4] + rx)),
+        float(np.max(p[:, 5] + ry)),
+    )
 
 
 def affine_scale(params) -> np.ndarray:

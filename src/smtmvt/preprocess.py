@@ -9,6 +9,7 @@ the whole gray frame, before any candidate is cropped.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import cv2
@@ -16,7 +17,7 @@ import numpy as np
 
 from .features import tan_triggs
 
-__all__ = ["PreparedFrame", "prepare_frame", "resize_frame", "smooth", "to_unit_range"]
+__all__ = ["PreparedFrame", "prepare_frame", "resize_frame", "sample_window", "smooth", "smooth_reach", "to_unit_range"]
 
 
 @dataclass(frozen=True)
@@ -110,11 +111,80 @@ def resize_frame(frame: np.ndarray, size) -> np.ndarray:
     return cv2.resize(a, (W, H), interpolation=cv2.INTER_AREA if shrink else cv2.INTER_LINEAR)
 
 
-def smooth(plane: np.ndarray, sigma: float) -> np.ndarray:
+def smooth_reach(sigma: float) -> int:
+    """Pixels :func:`smooth` reads on each side of a pixel (0 below its threshold)."""
+    if sigma < 0.3:
+        return 0
+    # OpenCV's kernel for float planes: size round(8 sigma + 1), made odd
+    return (int(round(8.0 * sigma + 1.0)) | 1) // 2
+
+
+def sample_window(extent, shape) -> tuple[int, int, int, int]:
+    """The pixels that bilinear samples inside ``extent`` read, within the plane.
+
+    Parameters
+    ----------
+    extent : (x0, y0, x1, y1) float, plane coordinates (0-based pixel
+        centres) bounding every sample point.
+    shape : (H, W) of the plane.
+
+    Returns
+    -------
+    (x0, y0, x1, y1) int: the window ``[x0, x1) x [y0, y1)``, at least 2
+    pixels wide and high, holding both neighbours of every sample along each
+    axis. Where samples leave the plane the window reaches its border, whose
+    pixels the samples then read (``BORDER_REPLICATE``).
+    """
+    H, W = int(shape[0]), int(shape[1])
+    ex0, ey0, ex1, ey1 = (float(v) for v in extent)
+    if not all(math.isfinite(v) for v in (ex0, ey0, ex1, ey1)):
+        raise ValueError(f"sample_window: extent {extent} is not finite")
+
+    def axis(lo: float, hi: float, size: int) -> tuple[int, int]:
+        a = min(max(math.floor(lo) - 1, 0), size - 2)
+        b = max(min(math.floor(hi) + 3, size), a + 2)
+        return a, b
+
+    x0, x1 = axis(ex0, ex1, W)
+    y0, y1 = axis(ey0, ey1, H)
+    return x0, y0, x1, y1
+
+
+_ALIGN = 32  # columns; a multiple of every SIMD width of float32 rows (AVX-512: 16)
+
+
+def smooth(plane: np.ndarray, sigma: float, window=None) -> np.ndarray:
     """Gaussian smoothing of an (H, W) or (H, W, C) float32 plane (``sigma`` pixels).
 
     Below 0.3 pixels the plane is returned as it is (the kernel would be a delta).
+
+    ``window`` : optional ``(x0, y0, x1, y1)`` int (see :func:`sample_window`):
+    only the pixels ``[y0:y1, x0:x1]`` are computed, from the window grown by
+    the kernel's reach (:func:`smooth_reach`, clipped to the plane), so they
+    equal the whole plane's smoothing bit for bit; the other pixels of the
+    returned plane are zero. The result has the plane's shape (also
+    ``(H, W, 1)``).
     """
     if sigma < 0.3:
         return plane
-    return cv2.GaussianBlur(plane, (0, 0), float(sigma), borderType=cv2.BORDER_REFLECT)
+    if window is None:
+        return cv2.GaussianBlur(plane, (0, 0), float(sigma), borderType=cv2.BORDER_REFLECT).reshape(plane.shape)
+    H, W = plane.shape[:2]
+    x0, y0, x1, y1 = (int(v) for v in window)
+    if not (0 <= x0 < x1 <= W and 0 <= y0 < y1 <= H):
+        raise ValueError(f"smooth: window {(x0, y0, x1, y1)} is not inside the {W}x{H} plane")
+    r = smooth_reach(sigma) + 1  # one more than the kernel's radius: safe from its rounding
+    # The crop's columns start and end on multiples of _ALIGN (or at the plane's edges), so
+    # that OpenCV's vectorized row filter treats each pixel as in the whole plane (a
+    # pixel in the scalar tail of a row is rounded otherwise). cv2 reflects at the
+    # crop's edges: only those on the plane's own edges keep pixels within r of them.
+    gx0 = (max(x0 - r, 0) // _ALIGN) * _ALIGN
+    gx1 = min(-(-(x1 + r) // _ALIGN) * _ALIGN, W)
+    gy0, gy1 = max(y0 - r, 0), min(y1 + r, H)
+    part = cv2.GaussianBlur(
+        np.ascontiguousarray(plane[gy0:gy1, gx0:gx1]), (0, 0), float(sigma), borderType=cv2.BORDER_REFLECT
+    )
+    part = part.reshape(part.shape[:2] + plane.shape[2:])  # cv2 drops a single channel's axis
+    out = np.zeros_like(plane)
+    out[y0:y1, x0:x1] = part[y0 - gy0 : y1 - gy0, x0 - gx0 : x1 - gx0]
+    return out

@@ -32,10 +32,10 @@ from threadpoolctl import ThreadpoolController
 
 from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
-from .geometry import affine_scale, affine_to_box, box_inside_fraction, box_to_affine
+from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine
 from .likelihood import Observation, observe
 from .motion import propagate, pull_shape, resample
-from .preprocess import PreparedFrame, prepare_frame, resize_frame, smooth, to_unit_range
+from .preprocess import PreparedFrame, prepare_frame, resize_frame, sample_window, smooth, to_unit_range
 from .solvers import BOUNDED_CODING, SOLVERS, solve_smtmvt
 from .templates import TemplateSet
 from .warp import inside_fraction, remap_patches, sampling_grid
@@ -170,16 +170,18 @@ class Tracker:
             return X, Y
 
         with self._timed("warp"):
+            # every plane is smoothed only where the samples read it
+            x0, y0, x1, y1 = affine_extent(params)
+            if plane_scale != 1.0:
+                x0, y0, x1, y1 = ((v + 0.5) * plane_scale - 0.5 for v in (x0, y0, x1, y1))
+            win = sample_window((x0, y0, x1, y1), frame.shape)
+            sig_i, sig_f = cfg.antialias * step_i, cfg.antialias * step_f
             X, Y = grid(fs)
             patches = Patches(
-                intensity=remap_patches(smooth(frame.normalized, cfg.antialias * step_i), *grid(self._intensity_size)),
-                gray=remap_patches(smooth(frame.normalized, cfg.antialias * step_f), X, Y)
-                if self._needs_gray
-                else None,
-                color=remap_patches(smooth(frame.color, cfg.antialias * step_f), X, Y).reshape(
-                    len(params), fs[0], fs[1], -1
-                ),
-                raw=remap_patches(smooth(frame.gray, cfg.antialias * step_f), X, Y) if self._needs_raw else None,
+                intensity=remap_patches(smooth(frame.normalized, sig_i, win), *grid(self._intensity_size)),
+                gray=remap_patches(smooth(frame.normalized, sig_f, win), X, Y) if self._needs_gray else None,
+                color=remap_patches(smooth(frame.color, sig_f, win), X, Y).reshape(len(params), fs[0], fs[1], -1),
+                raw=remap_patches(smooth(frame.gray, sig_f, win), X, Y) if self._needs_raw else None,
             )
         return patches
 
