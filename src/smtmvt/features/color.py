@@ -59,42 +59,44 @@ def soft_binning_matrix(bins: int = COLOR_BINS, levels: int = _LEVELS) -> np.nda
 
 
 @njit(cache=True, nogil=True, boundscheck=False)
-def _cell_histograms(colors, cell_of_row, cell_of_col, grid, lo, w_lo, w_hi, out):  # pragma: no cover - compiled
-    """Soft histograms ``out[patch, cell, channel, bin]`` (float64, not yet divided by
-    the cell area), one patch at a time (its level counts stay in cache).
+def _cell_histograms(colors, row_of_value, lo, w_lo, w_hi, out):  # pragma: no cover - compiled
+    """Soft histograms ``out[patch, row, bin]`` (float64, not yet divided by the cell
+    area) of ``colors (n, P)``, each patch's P values (pixels x channels, flattened);
+    value ``i`` counts in histogram row ``row_of_value[i]`` (its cell and channel).
 
-    Each pixel's level ``round(255 v)`` of ``v`` clipped to [0, 1] is counted
-    (``cell = cell_of_row[y] * grid + cell_of_col[x]``). The rounding is done in
-    float32 as ``floor(clip(255 v + 0.5, 0.5, 255.5))`` (round half up;
-    clipping after the scale equals clipping to [0, 1] first; the value is
-    positive, so truncation is the floor). The counts are then mapped to the
-    bins by the soft-binning matrix W, whose rows have two nonzero weights
-    (``w_lo`` at ``lo``, ``w_hi`` at ``lo + 1``): 2 products per level instead
-    of ``bins``, each bin summed in level order.
+    One patch at a time (its level counts stay in cache): each value's level
+    ``round(255 v)``, of ``v`` clipped to [0, 1], is computed in a vectorized
+    loop, in float32 as ``floor(clip(255 v + 0.5, 0.5, 255.5))`` (round half
+    up; clipping after the scale equals clipping to [0, 1] first; the value is
+    positive, so truncation is the floor), then counted. The counts are mapped
+    to the bins by the soft-binning matrix W, whose rows have two nonzero
+    weights (``w_lo`` at ``lo``, ``w_hi`` at ``lo + 1``): 2 products per level
+    instead of ``bins``, each bin summed in level order.
     """
-    n, h, w, c = colors.shape
+    n, m = colors.shape
+    rows = out.shape[1]
     levels = lo.shape[0]
     scale = np.float32(levels - 1)
     half = np.float32(0.5)
     top = np.float32(levels - 0.5)
-    counts = np.zeros((out.shape[1], c, levels), dtype=np.int32)
+    counts = np.zeros(rows * levels, dtype=np.int32)
+    slot = np.empty(m, dtype=np.int64)
+    offset = row_of_value * levels
     for k in range(n):
+        values = colors[k]
+        for i in range(m):
+            slot[i] = offset[i] + np.int64(min(max(values[i] * scale + half, half), top))
         counts[:] = 0
-        for y in range(h):
-            base = cell_of_row[y] * grid
-            for x in range(w):
-                cell = base + cell_of_col[x]
-                for ch in range(c):
-                    level = np.int64(min(max(colors[k, y, x, ch] * scale + half, half), top))
-                    counts[cell, ch, level] += 1
-        for cell in range(out.shape[1]):
-            for ch in range(c):
-                for q in range(levels):
-                    m = counts[cell, ch, q]
-                    if m:
-                        out[k, cell, ch, lo[q]] += m * w_lo[q]
-                        if w_hi[q] != 0.0:
-                            out[k, cell, ch, lo[q] + 1] += m * w_hi[q]
+        for i in range(m):
+            counts[slot[i]] += 1
+        for r in range(rows):
+            base = r * levels
+            for q in range(levels):
+                c = counts[base + q]
+                if c:
+                    out[k, r, lo[q]] += c * w_lo[q]
+                    if w_hi[q] != 0.0:
+                        out[k, r, lo[q] + 1] += c * w_hi[q]
     return out
 
 
@@ -107,15 +109,17 @@ def _grid_histograms(colors: np.ndarray, grid: int, bins: int) -> np.ndarray:
     cols = (np.arange(grid + 1) * w) // grid
     cell_of_row = np.searchsorted(rows, np.arange(h), side="right") - 1
     cell_of_col = np.searchsorted(cols, np.arange(w), side="right") - 1
+    cell = cell_of_row[:, None] * grid + cell_of_col[None, :]  # (h, w)
+    row_of_value = (cell[:, :, None] * c + np.arange(c)).ravel()  # histogram row of each (y, x, channel)
     W = soft_binning_matrix(bins, _LEVELS)
     lo = np.argmax(W > 0, axis=1)  # each level's first bin; the second is lo + 1 (weight 0 past the end)
     w_lo = W[np.arange(_LEVELS), lo]
     w_hi = np.where(lo + 1 < bins, W[np.arange(_LEVELS), np.minimum(lo + 1, bins - 1)], 0.0)
-    hist = np.zeros((n, grid * grid, c, bins))
-    colors = np.ascontiguousarray(colors, dtype=np.float32)
-    _cell_histograms(colors, cell_of_row, cell_of_col, grid, lo, w_lo, w_hi, hist)
+    hist = np.zeros((n, grid * grid * c, bins))
+    flat = np.ascontiguousarray(colors, dtype=np.float32).reshape(n, h * w * c)
+    _cell_histograms(flat, row_of_value, lo, w_lo, w_hi, hist)
     area = (np.diff(rows)[:, None] * np.diff(cols)[None, :]).reshape(1, grid * grid, 1, 1)
-    return (hist / area).reshape(n, -1).astype(np.float32)
+    return (hist.reshape(n, grid * grid, c, bins) / area).reshape(n, -1).astype(np.float32)
 
 
 def color_histograms(colors: np.ndarray, bins: int = COLOR_BINS) -> np.ndarray:
