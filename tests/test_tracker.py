@@ -242,3 +242,19 @@ def test_full_shape_pull_keeps_the_first_boxes_aspect(demo):
     assert np.abs(aspect - aspect[0]).max() < 0.06
     with pytest.raises(ValueError, match="shape_pull"):
         TrackerConfig(shape_pull=1.5)
+
+
+def test_velocity_fraction_moves_that_share_of_the_particles(demo):
+    """velocity_fraction 0.5: every other particle is moved by the velocity term, the
+    others stay (no noise here, so the motion is the shift alone)."""
+    cfg = FAST.replace(velocity=1.0, velocity_fraction=0.5, affine_std=(0.0,) * 6, n_particles=10)
+    t = Tracker(cfg)
+    t.init(demo.frames[0], demo.groundtruth[0])
+    state = t._state.copy()
+    t._velocity = np.array([6.0, -2.0])
+    _, detail = t.update_detailed(demo.frames[1])
+    moved = detail.particles[:, 4:] - state[4:]
+    np.testing.assert_allclose(moved[1::2], np.tile([6.0, -2.0], (5, 1)))
+    np.testing.assert_allclose(moved[0::2], 0.0)
+    with pytest.raises(ValueError, match="velocity_fraction"):
+        TrackerConfig(velocity_fraction=-0.1)

@@ -145,6 +145,11 @@ class TrackerConfig:
         chosen box (0: a pure random walk, as L1-APG and MTT). Default 0.5
         (measured in the table above; 0.25 gave 0.568 against 0.593, Shaking
         0.64 -> 0.35 and Subway 0.64 -> 0.49, Walking2 0.34 -> 0.46).
+    velocity_fraction : float in [0, 1]
+        Fraction of the particles moved by the velocity term, spread evenly
+        over the particle indices (resampled copies of one particle are
+        adjacent, so each keeps both hypotheses); the others follow the pure
+        random walk. 1: all (a constant-velocity model), the default.
     shape_pull : float in [0, 1]
         Mean reversion of the particles' shape (aspect ratio and skew) toward
         the first frame's box (:func:`smtmvt.motion.pull_shape`), applied
@@ -275,6 +280,7 @@ class TrackerConfig:
     narrow_scale: float = 0.25
     estimate: str = "best"
     velocity: float = 0.5
+    velocity_fraction: float = 1.0
     shape_pull: float = 0.0
     feature_size: tuple = (32, 32)
     model: str = "smtmvt"
@@ -322,6 +328,7 @@ class TrackerConfig:
             "histogram_power": self.histogram_power > 0,
             "velocity": 0 <= self.velocity <= 1,
             "shape_pull": 0 <= self.shape_pull <= 1,
+            "velocity_fraction": 0 <= self.velocity_fraction <= 1,
             "estimate": self.estimate in ("best", "mean"),
             "fixed_templates": 1 <= int(self.fixed_templates) <= int(self.n_templates),
             "narrow_fraction": 0 <= self.narrow_fraction <= 1,
@@ -373,6 +380,7 @@ class TrackerConfig:
             narrow_scale=0.25,
             estimate="best",
             velocity=0.0,
+            velocity_fraction=1.0,
             shape_pull=0.0,
             feature_size=(32, 32),
             model="smtmvt",

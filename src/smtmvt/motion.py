@@ -30,7 +30,8 @@ def propagate(
     std : (6,) relative standard deviations ``[a11, a12, a21, a22, tx, ty]``.
     rng : numpy Generator (the tracker's seeded generator).
     shift : optional (2,) translation ``(dx, dy)`` pixels added to every
-        particle before the noise (a constant-velocity prediction).
+        particle before the noise (a constant-velocity prediction), or
+        (n, 2), one per particle.
     spread : optional (n,) factor multiplying every standard deviation of
         each particle (e.g. a fraction of the particles searching narrowly).
     translation_power : the translation std is ``std[4:] * sc ** translation_power``

@@ -274,6 +274,10 @@ class Tracker:
         self._init_state = self._state.copy()
         self._velocity = np.zeros(2)
         # the first narrow_fraction of the particles search with narrow_scale times the std
+        # velocity_fraction of the particles, evenly spread over the indices, take the velocity term
+        i = np.arange(cfg.n_particles)
+        moved = np.floor((i + 1) * cfg.velocity_fraction) > np.floor(i * cfg.velocity_fraction)
+        self._velocity_share = None if moved.all() else moved.astype(np.float64)[:, None]
         self._spread = None
         if cfg.narrow_fraction > 0:
             self._spread = np.ones(cfg.n_particles)
@@ -342,6 +346,8 @@ class Tracker:
             if cfg.shape_pull:
                 particles = pull_shape(particles, self._init_state, cfg.shape_pull)
             shift = cfg.velocity * self._velocity if cfg.velocity else None
+            if shift is not None and self._velocity_share is not None:
+                shift = self._velocity_share * shift
             particles = propagate(particles, cfg.affine_std, self._rng, shift, self._spread, cfg.translation_power)
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
