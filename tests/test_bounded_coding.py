@@ -328,3 +328,19 @@ def test_range_basis_rank_is_relative_to_the_largest_singular_value():
     X = [rng.standard_normal((12, 3))]
     assert range_basis(np.zeros((12, 4))).shape == (12, 0) and range_basis(np.zeros((12, 0))).shape == (12, 0)
     np.testing.assert_allclose(least_squares_residuals(X, [np.zeros((12, 4))]), (X[0] ** 2).sum(axis=0), rtol=1e-14)
+
+
+def test_tracker_keeps_the_range_bases_of_its_current_templates(demo):
+    """The bases the tracker keeps between frames are those of its dictionaries as they
+    are, also after template replacements (the demo replaces some)."""
+    from smtmvt.solvers.bounds import range_basis
+
+    t = Tracker(TrackerConfig(n_particles=60, seed=2))
+    t.init(demo.frames[0], demo.groundtruth[0])
+    replaced = 0
+    for frame in demo.frames[1:40]:
+        replaced += t.update(frame).template_replaced is not None
+        if t._bases is not None:
+            for Q, Dk in zip(t._bases, t._templates.dictionaries):
+                np.testing.assert_array_equal(Q, range_basis(Dk))
+    assert replaced >= 2

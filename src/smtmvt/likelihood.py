@@ -53,7 +53,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .solvers.bounds import least_squares_residuals, nonnegative_residuals
+from .solvers.bounds import least_squares_residuals, nonnegative_residuals, range_basis
 from .solvers.smtmvt import reconstruction_residual
 
 __all__ = ["likelihoods", "Observation", "observe", "FIRST_PASS"]
@@ -115,7 +115,16 @@ def _untimed(stage: str):
 
 
 def observe(
-    X, D, code: Callable, alpha: float, valid=None, eps: float = 1e-3, always=None, timed=None, deferred=None
+    X,
+    D,
+    code: Callable,
+    alpha: float,
+    valid=None,
+    eps: float = 1e-3,
+    always=None,
+    timed=None,
+    deferred=None,
+    bases=None,
 ) -> Observation:
     """Code the candidates that can matter and compute their likelihoods.
 
@@ -144,6 +153,9 @@ def observe(
         then holds the first views only, ``D`` all K dictionaries). Its time
         is reported as ``"features"``. The computed columns are returned in
         :attr:`Observation.views`.
+    bases : optional list of the K :func:`smtmvt.solvers.bounds.range_basis`
+        of ``D`` (they change only with the templates: the tracker keeps them),
+        computed from ``D`` when omitted.
     """
     timed = timed or _untimed
     n = X[0].shape[1]
@@ -154,11 +166,14 @@ def observe(
     X = list(X) + [np.zeros((Dk.shape[0], n), dtype=np.asarray(X[0]).dtype) for Dk in D[K0:]]
     have = np.full(n, deferred is None or K0 == K)  # candidates whose every view is at hand
 
-    def lower_bounds(Xs, Ds):
-        return nonnegative_residuals(Xs, Ds) if eps > 0 else least_squares_residuals(Xs, Ds)
+    if bases is None:
+        bases = [range_basis(Dk) for Dk in D]
+
+    def lower_bounds(Xs, Ds, Bs):
+        return nonnegative_residuals(Xs, Ds, Bs) if eps > 0 else least_squares_residuals(Xs, Ds, Bs)
 
     with timed("likelihood"):
-        bound = lower_bounds(X[:K0], D[:K0])
+        bound = lower_bounds(X[:K0], D[:K0], bases[:K0])
     coded = np.zeros(n, dtype=bool)
     C = np.zeros((K, N, n))
     E = [np.zeros((Dk.shape[0], n)) for Dk in D]
@@ -174,7 +189,7 @@ def observe(
         with timed("likelihood"):
             for k, Vk in enumerate(late, start=K0):
                 X[k][:, idx] = Vk
-            bound[idx] += lower_bounds(list(late), D[K0:])
+            bound[idx] += lower_bounds(list(late), D[K0:], bases[K0:])
             have[idx] = True
 
     def run(mask):

@@ -37,6 +37,7 @@ from .likelihood import Observation, observe
 from .motion import propagate, pull_shape, resample
 from .preprocess import PreparedFrame, prepare_frame, resize_frame, sample_window, smooth, to_unit_range
 from .solvers import BOUNDED_CODING, SOLVERS, solve_smtmvt
+from .solvers.bounds import range_basis
 from .templates import TemplateSet
 from .warp import inside_fraction, remap_patches, sampling_grid
 
@@ -286,6 +287,7 @@ class Tracker:
         self._box = tuple(float(v) for v in b)
         t_states = self._template_states(self._state)
         self._templates = TemplateSet([np.array(v, dtype=np.float32) for v in self._views(prepared, t_states)])
+        self._bases: list | None = None  # range_basis of each weighted dictionary, kept until a template changes
         self._particles = np.repeat(self._state[None], cfg.n_particles, axis=0)
         self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
         self._frame_index = 0
@@ -370,9 +372,12 @@ class Tracker:
                 Xk[:, idx] = Vk
             return self._weighted(views, first=len(now))
 
+        dictionaries = self._weighted(self._templates.dictionaries)
+        if self._bases is None:  # the templates changed
+            self._bases = [range_basis(Dk) for Dk in dictionaries]
         obs = observe(
             self._weighted(X),
-            self._weighted(self._templates.dictionaries),
+            dictionaries,
             self._code,
             cfg.alpha,
             valid=valid & ~is_probe,
@@ -380,6 +385,7 @@ class Tracker:
             always=is_probe,
             timed=self._timed,
             deferred=deferred if later else None,
+            bases=self._bases,
         )
         X = X + X_later
         p = obs.likelihood[:n]
@@ -403,6 +409,8 @@ class Tracker:
                 anchor_cos=cfg.anchor_cos,
                 fixed=cfg.fixed_templates,
             )
+        if decision.replaced is not None:
+            self._bases = None  # a dictionary column changed: its range bases are recomputed
         if cfg.estimate == "mean":
             w = p / p.sum()
             state = w @ particles

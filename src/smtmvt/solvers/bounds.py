@@ -197,12 +197,14 @@ def _nnls_kernel(Gs, Qs, XXs, out, ok):  # pragma: no cover - compiled
     return out
 
 
-def nonnegative_residuals(X, D) -> np.ndarray:
+def nonnegative_residuals(X, D, bases=None) -> np.ndarray:
     """``sum_k min_{c >= 0} ||D^k c - x_i^k||^2`` for every candidate (minus ``NNLS_MARGIN``), ``(n,)`` float64 >= 0.
 
     A lower bound on the residual of any nonnegative code (see the module
     docstring), at least :func:`least_squares_residuals`; where the active-set
     method cannot certify its result the least-squares bound is used.
+    ``bases``: optional :func:`range_basis` of each ``D^k``, as for
+    :func:`least_squares_residuals`.
     """
     Xs = [np.asarray(Xk, dtype=np.float64) for Xk in X]
     Ds = [np.asarray(Dk, dtype=np.float64) for Dk in D]
@@ -213,5 +215,5 @@ def nonnegative_residuals(X, D) -> np.ndarray:
     out = np.empty(n)
     ok = np.empty(n, dtype=np.bool_)
     _nnls_kernel(G, Q, XX, out, ok)
-    ls = least_squares_residuals(Xs, Ds)
+    ls = least_squares_residuals(Xs, Ds, bases)
     return np.maximum(np.where(ok, out - NNLS_MARGIN * len(Xs), ls), ls)
