@@ -608,3 +608,17 @@ def test_histogram_power_is_a_checked_tracker_option():
     assert TrackerConfig().histogram_power == 0.5 and TrackerConfig.paper().histogram_power == 1.0
     with pytest.raises(ValueError, match="histogram_power"):
         TrackerConfig(histogram_power=0.0)
+
+
+@pytest.mark.parametrize("block", [(1, 1), (2, 2), (3, 3), (2, 3), (4, 4)])
+def test_hog_block_kernel_equals_the_numpy_expression_bit_for_bit(block):
+    """The compiled L2-Hys sums each block's squares in numpy's pairwise order, so it
+    gives the array expression's descriptors exactly (4x4 blocks, 144 values, take the
+    array expression itself)."""
+    from smtmvt.features.hog import _cell_histograms, _normalized_blocks, hog_descriptors
+
+    rng = np.random.default_rng(21)
+    images = (rng.random((12, 40, 40)) ** 3).astype(np.float32)
+    images[0] = 0.5  # no gradient: all-zero cells
+    hist = _cell_histograms(images, 9, (8, 8))
+    assert_array_equal(hog_descriptors(images, cells_per_block=block), _normalized_blocks(hist, *block))

@@ -260,6 +260,17 @@ def hog_descriptors(
             f"{br * pixels_per_cell[0]}x{bc * pixels_per_cell[1]} px"
         )
     hist = _cell_histograms(images, orientations, pixels_per_cell)
+    if br * bc * orientations > 128:  # beyond _pairwise_sum's one level: numpy's expression
+        return _normalized_blocks(hist, br, bc)
+    out = np.empty((n, nbr, nbc, br * bc * orientations), dtype=np.float32)
+    _blocks_kernel(np.ascontiguousarray(hist), br, bc, _EPS**2, out)
+    return out.reshape(n, -1)
+
+
+def _normalized_blocks(hist: np.ndarray, br: int, bc: int) -> np.ndarray:
+    """L2-Hys blocks of ``hist (n, ncr, ncc, o)`` as numpy array expressions, ``(n, d)`` float32."""
+    n, ncr, ncc, orientations = hist.shape
+    nbr, nbc = ncr - br + 1, ncc - bc + 1
     # blocks[:, r, c, i, j, :] = hist[:, r + i, c + j, :]
     blocks = np.empty((n, nbr, nbc, br, bc, orientations), dtype=np.float64)
     for i in range(br):
@@ -271,6 +282,67 @@ def hog_descriptors(
     norm = np.sqrt(np.sum(blocks**2, axis=-1, keepdims=True) + _EPS**2)
     blocks = blocks / norm
     return blocks.reshape(n, -1).astype(np.float32)
+
+
+@njit(cache=True, nogil=True, boundscheck=False)
+def _pairwise_sum(a, m):  # pragma: no cover - compiled
+    """``sum(a[:m])`` in numpy's summation order for ``m <= 128`` (8 running sums, then
+    the tail), so that the result equals ``np.sum`` bit for bit."""
+    if m < 8:
+        res = 0.0
+        for i in range(m):
+            res += a[i]
+        return res
+    r0, r1, r2, r3, r4, r5, r6, r7 = a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7]
+    i = 8
+    while i < m - (m % 8):
+        r0 += a[i]
+        r1 += a[i + 1]
+        r2 += a[i + 2]
+        r3 += a[i + 3]
+        r4 += a[i + 4]
+        r5 += a[i + 5]
+        r6 += a[i + 6]
+        r7 += a[i + 7]
+        i += 8
+    res = ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7))
+    while i < m:
+        res += a[i]
+        i += 1
+    return 0.0 + res
+
+
+@njit(cache=True, nogil=True, boundscheck=False)
+def _blocks_kernel(hist, br, bc, eps2, out):  # pragma: no cover - compiled
+    """L2-Hys of every block of ``br x bc`` cells of ``hist (n, ncr, ncc, o)`` into
+    ``out (n, nbr, nbc, br * bc * o)`` float32, block values ordered (cell row, cell
+    col, orientation): ``v / sqrt(|v|^2 + eps2)``, clipped at 0.2, normalized again.
+    The squared norms are summed in numpy's order (:func:`_pairwise_sum`, a block
+    has at most 128 values at the defaults' 36), so the result equals the
+    array expression of skimage's ``_hog_normalize_block`` bit for bit."""
+    n, ncr, ncc, o = hist.shape
+    nbr, nbc, m = out.shape[1], out.shape[2], out.shape[3]
+    v = np.empty(m)
+    sq = np.empty(m)
+    for k in range(n):
+        for r in range(nbr):
+            for c in range(nbc):
+                t = 0
+                for i in range(br):
+                    for j in range(bc):
+                        for b in range(o):
+                            v[t] = hist[k, r + i, c + j, b]
+                            t += 1
+                for t in range(m):
+                    sq[t] = v[t] * v[t]
+                norm = math.sqrt(_pairwise_sum(sq, m) + eps2)
+                for t in range(m):
+                    v[t] = min(v[t] / norm, 0.2)
+                    sq[t] = v[t] * v[t]
+                norm = math.sqrt(_pairwise_sum(sq, m) + eps2)
+                for t in range(m):
+                    out[k, r, c, t] = np.float32(v[t] / norm)
+    return out
 
 
 def hog_view(patches, plane: str = "tan_triggs") -> np.ndarray:
