@@ -622,3 +622,25 @@ def test_hog_block_kernel_equals_the_numpy_expression_bit_for_bit(block):
     images[0] = 0.5  # no gradient: all-zero cells
     hist = _cell_histograms(images, 9, (8, 8))
     assert_array_equal(hog_descriptors(images, cells_per_block=block), _normalized_blocks(hist, *block))
+
+
+def test_normalize_columns_equals_its_float64_array_expression_bit_for_bit():
+    """The compiled normalization against the array expression it replaces (centre in
+    float64, divide by the norm, constant columns to zero), on 60 random shapes."""
+
+    def reference(V):
+        X = V.astype(np.float64)
+        X -= X.mean(axis=0, keepdims=True)
+        norm = np.sqrt(np.einsum("ij,ij->j", X, X))
+        constant = norm <= 1e-9 * (np.abs(V).max(axis=0, initial=0.0) * np.sqrt(V.shape[0]))
+        X *= np.where(constant, 0.0, 1.0 / np.where(constant, 1.0, norm))
+        return X.astype(np.float32)
+
+    rng = np.random.default_rng(22)
+    for trial in range(60):
+        d, n = int(rng.integers(1, 400)), int(rng.integers(1, 300))
+        V = (rng.standard_normal((d, n)) * 10 ** rng.uniform(-3, 3) + rng.uniform(-5, 5)).astype(np.float32)
+        V[:, 0] = 1.5  # a constant column
+        if trial % 2:
+            V = V.astype(np.float64)
+        assert_array_equal(normalize_columns(V), reference(V), err_msg=f"trial {trial}")
