@@ -136,3 +136,16 @@ def test_any_image_dtype_gives_float32_patches():
         got = warp_patches(img, params, (9, 11))
         assert got.dtype == np.float32
         np.testing.assert_array_equal(got, ref)
+
+
+@pytest.mark.parametrize("scale", [0.25, 0.7, 1.3, 3.9])
+def test_sampling_grid_on_a_resized_plane_is_the_float32_expression(scale):
+    """``plane_scale`` maps the grid as ``(X + 0.5) s - 0.5`` in float32, bit for bit."""
+    rng = np.random.default_rng(8)
+    params = np.tile([1.2, 0.1, -0.05, 0.9, 150.0, 60.0], (50, 1)) + rng.normal(0, 0.5, (50, 6))
+    X, Y = sampling_grid(params, (25, 9))
+    half, s = np.float32(0.5), np.float32(scale)
+    Xs, Ys = sampling_grid(params, (25, 9), scale)
+    np.testing.assert_array_equal(Xs, (X + half) * s - half)
+    np.testing.assert_array_equal(Ys, (Y + half) * s - half)
+    assert Xs.dtype == np.float32

@@ -164,11 +164,7 @@ class Tracker:
         step_f = max(w / fs[1], h / fs[0])
 
         def grid(size):
-            X, Y = sampling_grid(params, size)
-            if plane_scale != 1.0:
-                X = (X + np.float32(0.5)) * np.float32(plane_scale) - np.float32(0.5)
-                Y = (Y + np.float32(0.5)) * np.float32(plane_scale) - np.float32(0.5)
-            return X, Y
+            return sampling_grid(params, size, plane_scale)
 
         with self._timed("warp"):
             # every plane is smoothed only where the samples read it

@@ -20,18 +20,24 @@ __all__ = ["sampling_grid", "remap_patches", "warp_patches", "inside_fraction"]
 
 
 @njit(cache=True, nogil=True)
-def _grid_kernel(params, u, v, X, Y):  # pragma: no cover - compiled (tested through sampling_grid)
+def _grid_kernel(params, u, v, scale, X, Y):  # pragma: no cover - compiled (tested through sampling_grid)
+    half = np.float32(0.5)
     for k in range(params.shape[0]):
         a11, a12, a21, a22, tx, ty = params[k]
         for i in range(v.shape[0]):
             for j in range(u.shape[0]):
                 # float64, in the order numpy's broadcast expression used, then rounded to float32
-                X[k, i, j] = a11 * u[j] + a12 * v[i] + tx
-                Y[k, i, j] = a21 * u[j] + a22 * v[i] + ty
+                x = np.float32(a11 * u[j] + a12 * v[i] + tx)
+                y = np.float32(a21 * u[j] + a22 * v[i] + ty)
+                if scale != np.float32(1.0):  # float32, as the array expression (X + 0.5) * s - 0.5
+                    x = (x + half) * scale - half
+                    y = (y + half) * scale - half
+                X[k, i, j] = x
+                Y[k, i, j] = y
     return X, Y
 
 
-def sampling_grid(params, size) -> tuple[np.ndarray, np.ndarray]:
+def sampling_grid(params, size, plane_scale: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
     """Image coordinates sampled for each particle.
 
     Patch pixel ``(i, j)`` (row, column) of a ``(ph, pw)`` patch sits at template
@@ -42,6 +48,10 @@ def sampling_grid(params, size) -> tuple[np.ndarray, np.ndarray]:
     ----------
     params : (n, 6) affine states (see :mod:`smtmvt.geometry`).
     size : (ph, pw) patch size in pixels.
+
+    plane_scale : the coordinates on the image resized by this factor (pixel
+        edges to pixel edges): ``(x + 0.5) s - 0.5``, in float32 after the
+        rounding of ``x``.
 
     Returns
     -------
@@ -55,7 +65,7 @@ def sampling_grid(params, size) -> tuple[np.ndarray, np.ndarray]:
     v = ((np.arange(ph) + 0.5) / ph - 0.5) * REF
     X = np.empty((len(p), ph, pw), dtype=np.float32)
     Y = np.empty((len(p), ph, pw), dtype=np.float32)
-    return _grid_kernel(p, u, v, X, Y)
+    return _grid_kernel(p, u, v, np.float32(plane_scale), X, Y)
 
 
 def remap_patches(image: np.ndarray, X: np.ndarray, Y: np.ndarray) -> np.ndarray:
