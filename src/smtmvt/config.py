@@ -33,6 +33,7 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
         with shape_pull 0.02                           0.586 over 3 seeds [9]
         with velocity_fraction 0.5                     0.534 over 3 seeds [10]
       with velocity 0.25                               0.568 over 3 seeds
+      with velocity 0.75                               0.572 over 3 seeds
   with translation_power 0.5                           0.517
   with antialias 0.5                                   0.522
 antialias 1, scale_normalize, LBP on gray only         0.505
@@ -168,7 +169,9 @@ class TrackerConfig:
         moved by ``velocity`` times the last frame's displacement of the
         chosen box (0: a pure random walk, as L1-APG and MTT). Default 0.5
         (measured in the table above; 0.25 gave 0.568 against 0.593, Shaking
-        0.64 -> 0.35 and Subway 0.64 -> 0.49, Walking2 0.34 -> 0.46).
+        0.64 -> 0.35 and Subway 0.64 -> 0.49, Walking2 0.34 -> 0.46; 0.75 gave
+        0.572, Shaking 0.64 -> 0.48, Subway 0.64 -> 0.47, David 0.68 -> 0.57,
+        Walking2 0.34 -> 0.50).
     velocity_fraction : float in [0, 1]
         Fraction of the particles moved by the velocity term, spread evenly
         over the particle indices (resampled copies of one particle are
