@@ -270,11 +270,11 @@ class Tracker:
         self._state = box_to_affine(wb)
         self._init_state = self._state.copy()
         self._velocity = np.zeros(2)
-        # the first narrow_fraction of the particles search with narrow_scale times the std
         # velocity_fraction of the particles, evenly spread over the indices, take the velocity term
         i = np.arange(cfg.n_particles)
         moved = np.floor((i + 1) * cfg.velocity_fraction) > np.floor(i * cfg.velocity_fraction)
         self._velocity_share = None if moved.all() else moved.astype(np.float64)[:, None]
+        # the first narrow_fraction of the particles search with narrow_scale times the std
         self._spread = None
         if cfg.narrow_fraction > 0:
             self._spread = np.ones(cfg.n_particles)
