@@ -111,9 +111,13 @@ def resize_frame(frame: np.ndarray, size) -> np.ndarray:
     return cv2.resize(a, (W, H), interpolation=cv2.INTER_AREA if shrink else cv2.INTER_LINEAR)
 
 
+#: Below this sigma (pixels) :func:`smooth` returns the plane as it is (the kernel would be a delta).
+SMOOTH_MIN_SIGMA = 0.3
+
+
 def smooth_reach(sigma: float) -> int:
-    """Pixels :func:`smooth` reads on each side of a pixel (0 below its threshold)."""
-    if sigma < 0.3:
+    """Pixels :func:`smooth` reads on each side of a pixel (0 below ``SMOOTH_MIN_SIGMA``)."""
+    if sigma < SMOOTH_MIN_SIGMA:
         return 0
     # OpenCV's kernel for float planes: size round(8 sigma + 1), made odd
     return (int(round(8.0 * sigma + 1.0)) | 1) // 2
@@ -156,7 +160,7 @@ _ALIGN = 32  # columns; a multiple of every SIMD width of float32 rows (AVX-512:
 def smooth(plane: np.ndarray, sigma: float, window=None) -> np.ndarray:
     """Gaussian smoothing of an (H, W) or (H, W, C) float32 plane (``sigma`` pixels).
 
-    Below 0.3 pixels the plane is returned as it is (the kernel would be a delta).
+    Below ``SMOOTH_MIN_SIGMA`` pixels the plane is returned as it is.
 
     ``window`` : optional ``(x0, y0, x1, y1)`` int (see :func:`sample_window`):
     only the pixels ``[y0:y1, x0:x1]`` are computed, from the window grown by
@@ -165,7 +169,7 @@ def smooth(plane: np.ndarray, sigma: float, window=None) -> np.ndarray:
     returned plane are zero. The result has the plane's shape (also
     ``(H, W, 1)``).
     """
-    if sigma < 0.3:
+    if sigma < SMOOTH_MIN_SIGMA:
         return plane
     if window is None:
         return cv2.GaussianBlur(plane, (0, 0), float(sigma), borderType=cv2.BORDER_REFLECT).reshape(plane.shape)

@@ -256,10 +256,8 @@ class Tracker:
         }
         # the feature-size gray planes the views read (only those are warped; a
         # registered view of another name may read either)
-        planes = set()
-        for view in cfg.views:
-            read = {"hog": {cfg.hog_plane}, "lbp": {cfg.lbp_plane}, "intensity": set(), "color": set()}
-            planes |= read.get(view, {"gray", "tan_triggs"})
+        read = {"hog": {cfg.hog_plane}, "lbp": {cfg.lbp_plane}, "intensity": set(), "color": set()}
+        planes = set().union(*(read.get(view, {"gray", "tan_triggs"}) for view in cfg.views))
         self._needs_raw, self._needs_gray = "gray" in planes, "tan_triggs" in planes
         # the views from this index on are computed only where the bounds need them
         n_first = len(cfg.views)

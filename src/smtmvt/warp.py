@@ -48,7 +48,6 @@ def sampling_grid(params, size, plane_scale: float = 1.0) -> tuple[np.ndarray, n
     ----------
     params : (n, 6) affine states (see :mod:`smtmvt.geometry`).
     size : (ph, pw) patch size in pixels.
-
     plane_scale : the coordinates on the image resized by this factor (pixel
         edges to pixel edges): ``(x + 0.5) s - 0.5``, in float32 after the
         rounding of ``x``.
