@@ -474,8 +474,12 @@ def test_patches_validation():
         Patches(ok.intensity, ok.gray[0], ok.color)
     with pytest.raises(ValueError, match="C = 3"):
         Patches(ok.intensity, ok.gray, np.zeros((3, 32, 32, 2), np.float32))
+    small = Patches(ok.intensity, ok.gray, np.zeros((3, 16, 16, 3), np.float32))  # the color view's own size
+    assert small.color.shape == (3, 16, 16, 3)
     with pytest.raises(ValueError, match="feature size"):
-        Patches(ok.intensity, ok.gray, np.zeros((3, 16, 32, 3), np.float32))
+        Patches(ok.intensity, ok.gray, ok.color, raw=ok.gray[:, :16])
+    with pytest.raises(ValueError, match="one patch per candidate"):
+        Patches(ok.intensity, ok.gray[:2], ok.color)
     with pytest.raises(ValueError, match="at least one"):
         Patches(ok.intensity[:0], ok.gray[:0], ok.color[:0])
     converted = Patches(ok.intensity.astype(np.float64), ok.gray, ok.color)

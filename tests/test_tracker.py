@@ -258,3 +258,21 @@ def test_velocity_fraction_moves_that_share_of_the_particles(demo):
     np.testing.assert_allclose(moved[0::2], 0.0)
     with pytest.raises(ValueError, match="velocity_fraction"):
         TrackerConfig(velocity_fraction=-0.1)
+
+
+def test_color_size_samples_the_color_view_at_its_own_size(demo):
+    """``color_size`` equal to the feature size is the default; a smaller one
+    samples the color patches (and so the templates) at that size."""
+    frames, box = demo.frames[:6], demo.groundtruth[0]
+    plain = _track(frames, box, FAST)
+    np.testing.assert_array_equal(plain, _track(frames, box, FAST.replace(color_size=(32, 32))))
+    t = Tracker(FAST.replace(color_size=(16, 12)))
+    t.init(frames[0], box)
+    patches = t._patches(t._prepare(frames[1], "frame", t._channels), t._particles[:5])
+    assert patches.color.shape == (5, 16, 12, 3) and patches.raw.shape == (5, 32, 32)
+    ref = Tracker(FAST)
+    ref.init(frames[0], box)
+    d16, d32 = t._templates.dictionaries[1], ref._templates.dictionaries[1]  # the color view
+    assert d16.shape == d32.shape and not np.allclose(d16, d32, atol=1e-3)
+    with pytest.raises(ValueError, match="color_size"):
+        TrackerConfig(color_size=(1, 16))

@@ -190,9 +190,28 @@ class TrackerConfig:
         the first frame's box (:func:`smtmvt.motion.pull_shape`), applied
         before the noise each frame; 0: a free random walk (the paper), the
         default (0.05 and 0.02 measured in the table above, not kept).
+    background_weight : float >= 0
+        Weight ``beta`` of the background term (:mod:`smtmvt.background`):
+        each frame ``background_samples`` boxes of the target's size on a
+        ring around its predicted position are seen in the same views as the
+        candidates, and a candidate's likelihood is lowered by ``exp(-alpha
+        beta (b_max - b_i))``, ``b_i`` its residual over them (a candidate
+        like the surroundings, such as a similar object near the target,
+        loses). 0: the paper's likelihood, the default.
+    background_samples : int
+        Boxes on the background ring (used when ``background_weight`` > 0).
+    background_measure : str
+        ``b_i`` of the background term: ``"nearest"``, the squared distance
+        to the nearest ring box, or ``"nnls"``, the nonnegative least-squares
+        residual over them (:func:`smtmvt.background.background_residuals`).
     feature_size : (int, int)
         Height, width (pixels) to which each candidate is warped for the HOG,
         LBP and color views.
+    color_size : (int, int) or None
+        Height, width (pixels) of the color view's patches when they differ
+        from ``feature_size`` (a histogram needs fewer samples than HOG
+        and LBP need pixels; the anti-aliasing blur follows the coarser
+        step). None: ``feature_size``, the default.
     model : str
         Observation model, a key of :data:`smtmvt.solvers.SOLVERS`: ``"smtmvt"``
         (the paper's, default) or one of the comparison models of the paper's
@@ -320,7 +339,11 @@ class TrackerConfig:
     velocity: float = 0.5
     velocity_fraction: float = 1.0
     shape_pull: float = 0.0
+    background_weight: float = 0.0
+    background_samples: int = 12
+    background_measure: str = "nearest"
     feature_size: tuple = (32, 32)
+    color_size: tuple | None = None
     model: str = "smtmvt"
     solver: str = "admm"
     solver_tol: float = 1e-3
@@ -354,6 +377,8 @@ class TrackerConfig:
             "model": self.model in SOLVERS,
             "affine_std": len(self.affine_std) == 6 and all(s >= 0 for s in self.affine_std),
             "feature_size": len(self.feature_size) == 2 and min(self.feature_size) >= 8,
+            "color_size": self.color_size is None
+            or (len(self.color_size) == 2 and min(self.color_size) >= max(2, int(self.color_grid))),
             "solver_tol": self.solver_tol > 0,
             "solver_max_iter": int(self.solver_max_iter) >= 1,
             "prune_eps": 0 <= self.prune_eps < 1,
@@ -367,6 +392,9 @@ class TrackerConfig:
             "velocity": 0 <= self.velocity <= 1,
             "shape_pull": 0 <= self.shape_pull <= 1,
             "velocity_fraction": 0 <= self.velocity_fraction <= 1,
+            "background_weight": self.background_weight >= 0,
+            "background_samples": int(self.background_samples) >= 1,
+            "background_measure": self.background_measure in ("nearest", "nnls"),
             "estimate": self.estimate in ("best", "mean"),
             "fixed_templates": 1 <= int(self.fixed_templates) <= int(self.n_templates),
             "narrow_fraction": 0 <= self.narrow_fraction <= 1,
@@ -380,6 +408,8 @@ class TrackerConfig:
         object.__setattr__(self, "deferred_views", tuple(self.deferred_views))
         object.__setattr__(self, "affine_std", tuple(float(s) for s in self.affine_std))
         object.__setattr__(self, "feature_size", tuple(int(s) for s in self.feature_size))
+        if self.color_size is not None:
+            object.__setattr__(self, "color_size", tuple(int(s) for s in self.color_size))
         if self.frame_size is not None:
             object.__setattr__(self, "frame_size", tuple(int(s) for s in self.frame_size))
         if self.view_weights is not None:
@@ -420,7 +450,11 @@ class TrackerConfig:
             velocity=0.0,
             velocity_fraction=1.0,
             shape_pull=0.0,
+            background_weight=0.0,
+            background_samples=12,
+            background_measure="nearest",
             feature_size=(32, 32),
+            color_size=None,
             model="smtmvt",
             solver="admm",
             solver_tol=1e-3,

@@ -29,6 +29,11 @@ weights changes by a relative ``eps`` at most (1e-3 at the default), so
 resampling copies every particle the same number of times except where that
 relative change moves ``n p_j / sum`` across an integer.
 
+An additive term known for every candidate before coding (``offset``, for
+example the background term of :mod:`smtmvt.background`) enters the rule as
+part of the bound: ``u_i = exp(-alpha (b_i + o_i))`` bounds ``p_i = exp(-alpha
+(r_i + o_i))``, and everything above holds for those likelihoods.
+
 Deferred views. The bound of a candidate is a sum over the views of
 nonnegative terms, so the terms of some views alone are a (looser) lower
 bound too. With ``deferred`` (:func:`observe`), the last views are computed
@@ -125,6 +130,7 @@ def observe(
     timed=None,
     deferred=None,
     bases=None,
+    offset=None,
 ) -> Observation:
     """Code the candidates that can matter and compute their likelihoods.
 
@@ -156,12 +162,18 @@ def observe(
     bases : optional list of the K :func:`smtmvt.solvers.bounds.range_basis`
         of ``D`` (they change only with the templates: the tracker keeps them),
         computed from ``D`` when omitted.
+    offset : optional (n,) float >= 0 added to each candidate's residual in
+        its likelihood, ``exp(-alpha (residual + offset))``, and in the rule
+        (its bound is ``bound + offset``): a term known for every candidate
+        before coding, such as the background term of
+        :func:`smtmvt.background.background_offsets`. None: 0.
     """
     timed = timed or _untimed
     n = X[0].shape[1]
     K, N = len(D), D[0].shape[1]
     valid = np.ones(n, dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
     always = np.zeros(n, dtype=bool) if always is None else np.asarray(always, dtype=bool)
+    shift = np.zeros(n) if offset is None else np.asarray(offset, dtype=np.float64).reshape(n)
     K0 = len(X)
     X = list(X) + [np.zeros((Dk.shape[0], n), dtype=np.asarray(X[0]).dtype) for Dk in D[K0:]]
     have = np.full(n, deferred is None or K0 == K)  # candidates whose every view is at hand
@@ -210,16 +222,16 @@ def observe(
     if eps <= 0 or not valid.any():
         run(valid | always)
     else:
-        order = np.flatnonzero(valid)[np.argsort(bound[valid], kind="stable")]
+        order = np.flatnonzero(valid)[np.argsort((bound + shift)[valid], kind="stable")]
         first = np.zeros(n, dtype=bool)
         first[order[:FIRST_PASS]] = True
         run(first | always)
-        best = np.nanmin(np.where(valid & coded, residual, np.nan))
+        best = np.nanmin(np.where(valid & coded, residual + shift, np.nan))
         while True:
             # bounds relative to the best likelihood: u_i / p* = exp(-alpha (b_i - r*))
-            order = np.flatnonzero(valid)[np.argsort(bound[valid], kind="stable")]
+            order = np.flatnonzero(valid)[np.argsort((bound + shift)[valid], kind="stable")]
             rest = order[~coded[order]]
-            u = np.exp(-alpha * (bound[rest] - best))
+            u = np.exp(-alpha * (bound[rest] + shift[rest] - best))
             skipped_mass = np.cumsum(u[::-1])[::-1]  # sum of the bounds from each position to the end
             needed = np.isin(np.arange(n), rest[skipped_mass > eps])
             if have[needed].all():
@@ -227,5 +239,5 @@ def observe(
             complete(needed)  # their bounds rise: take the tail again
         run(needed)
     with timed("likelihood"):
-        p = likelihoods(residual, alpha, valid | always)
+        p = likelihoods(residual + shift, alpha, valid | always)
     return Observation(likelihood=p, residual=residual, bound=bound, coded=coded, C=C, E=E, views=X, complete=have)

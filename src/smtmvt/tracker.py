@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 from threadpoolctl import ThreadpoolController
 
+from .background import background_offsets, ring_states
 from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
 from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine
@@ -162,6 +163,8 @@ class Tracker:
         w, h = self._work_box[2] * plane_scale, self._work_box[3] * plane_scale
         step_i = max(w / self._intensity_size[1], h / self._intensity_size[0])
         step_f = max(w / fs[1], h / fs[0])
+        cs = cfg.color_size or fs
+        step_c = max(w / cs[1], h / cs[0])
 
         def grid(size):
             return sampling_grid(params, size, plane_scale)
@@ -174,10 +177,12 @@ class Tracker:
             win = sample_window((x0, y0, x1, y1), frame.shape)
             sig_i, sig_f = cfg.antialias * step_i, cfg.antialias * step_f
             X, Y = grid(fs)
+            XC, YC = (X, Y) if cs == fs else grid(cs)
+            sig_c = cfg.antialias * step_c
             patches = Patches(
                 intensity=remap_patches(smooth(frame.normalized, sig_i, win), *grid(self._intensity_size)),
                 gray=remap_patches(smooth(frame.normalized, sig_f, win), X, Y) if self._needs_gray else None,
-                color=remap_patches(smooth(frame.color, sig_f, win), X, Y).reshape(len(params), fs[0], fs[1], -1),
+                color=remap_patches(smooth(frame.color, sig_c, win), XC, YC).reshape(len(params), cs[0], cs[1], -1),
                 raw=remap_patches(smooth(frame.gray, sig_f, win), X, Y) if self._needs_raw else None,
             )
         return patches
@@ -345,13 +350,26 @@ class Tracker:
             if shift is not None and self._velocity_share is not None:
                 shift = self._velocity_share * shift
             particles = propagate(particles, cfg.affine_std, self._rng, shift, self._spread, cfg.translation_power)
+            # the background term's ring around the predicted target (after the particles' draws)
+            ring = None
+            if cfg.background_weight:
+                ring = ring_states(self._state, cfg.background_samples, self._rng, cfg.velocity * self._velocity)
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
-        patches = self._patches(prepared, states, plane_scale)
+        m = len(states)  # the candidates; the ring's states follow them in the batch
+        patches = self._patches(prepared, states if ring is None else np.concatenate([states, ring]), plane_scale)
         # views computed for every candidate, and the views deferred (likelihood.observe)
         now, later = cfg.views[: self._n_first], cfg.views[self._n_first :]
         X = self._extract(patches, now)
+        offset = None
+        if ring is not None:
+            with self._timed("likelihood"):
+                ring_views = [Xk[:, m:] for Xk in X]
+                X = [np.ascontiguousarray(Xk[:, :m]) for Xk in X]
+                offset = background_offsets(
+                    self._weighted(X), self._weighted(ring_views), cfg.background_weight, cfg.background_measure
+                )
         # A candidate mostly outside the image is not a valid observation.
         with self._timed("motion"):
             valid = inside_fraction(states, work_shape) >= 0.5
@@ -380,6 +398,7 @@ class Tracker:
             timed=self._timed,
             deferred=deferred if later else None,
             bases=self._bases,
+            offset=offset,
         )
         X = X + X_later
         p = obs.likelihood[:n]

@@ -63,9 +63,10 @@ class Patches:
         Tan-Triggs normalized gray, warped at the feature size (default 32x32);
         input of the HOG and LBP views asked for ``plane="tan_triggs"`` (the
         paper). HOG needs ``fh, fw >= 16``. None when no view reads it.
-    color : (n, fh, fw, C) float32
+    color : (n, ch, cw, C) float32
         Raw frame colors scaled to [0, 1], C = 3 (RGB) or C = 1 (gray frames),
-        at the feature size; input of the color view.
+        at the color view's size (the feature size unless
+        ``TrackerConfig.color_size`` says otherwise); input of the color view.
     raw : (n, fh, fw) float32 or None
         The gray frame *before* Tan-Triggs, at the feature size; input of the
         HOG and LBP views when they are asked for ``plane="gray"``. None when
@@ -94,16 +95,18 @@ class Patches:
             raise ValueError(f"empty patches: intensity {intensity.shape}, color {color.shape}")
         if color.shape[3] not in (1, 3):
             raise ValueError(f"Patches.color must have C = 3 (RGB) or C = 1 (gray) channels, got {color.shape[3]}")
+        size = None  # the feature size, shared by gray and raw
         for name in ("gray", "raw"):
             value = getattr(self, name)
             if value is None:
                 continue
             plane = _as_float32(name, value, 3, "(n, fh, fw)")
-            if plane.shape != color.shape[:3]:
+            if plane.shape[0] != n or (size is not None and plane.shape != size):
                 raise ValueError(
-                    f"Patches.{name} has shape {plane.shape} but Patches.color {color.shape}; "
-                    "both are warped at the feature size"
+                    f"Patches.{name} has shape {plane.shape} but {'Patches.gray ' + str(size) if size else f'n = {n}'}; "
+                    "gray and raw are warped at the feature size, one patch per candidate"
                 )
+            size = plane.shape
             object.__setattr__(self, name, plane)
         object.__setattr__(self, "intensity", intensity)
         object.__setattr__(self, "color", color)
