@@ -9,8 +9,10 @@ target, and score ``eps_f - eps_b``: a candidate the background explains
 well is background.
 
 Here the background dictionary of a frame is the views of ``m`` boxes of the
-target's size on a ring around its predicted position (:func:`ring_states`),
-computed in the same batch as the candidates. Each candidate's background
+target's size on a ring around it (:func:`ring_states`), taken in the
+previous frame around the box estimated there (where they do not overlap the
+target; a ring around the *predicted* position in the current frame would
+cover a fast target that outran the prediction). Each candidate's background
 residual ``b_i`` (:func:`background_residuals`, on the views computed for
 every candidate) is its squared distance to the nearest of them, or its
 nonnegative least-squares residual over them, and its likelihood becomes
@@ -34,7 +36,7 @@ __all__ = ["ring_states", "background_residuals", "background_offsets", "RING_RA
 RING_RADII = (0.75, 1.25)
 
 
-def ring_states(state, m: int, rng: np.random.Generator, shift=None, radii=RING_RADII) -> np.ndarray:
+def ring_states(state, m: int, rng: np.random.Generator, radii=RING_RADII) -> np.ndarray:
     """``m`` affine states of the target's shape on a ring around it.
 
     Parameters
@@ -43,8 +45,6 @@ def ring_states(state, m: int, rng: np.random.Generator, shift=None, radii=RING_
     m : number of states (>= 1).
     rng : the tracker's seeded generator (one rotation of the ring and ``m``
         radii drawn per call).
-    shift : optional (2,) pixels added to the centre first (the motion
-        model's prediction of the target's displacement).
     radii : (lo, hi); box ``j`` is at angle ``2 pi (j + u) / m`` (``u``
         uniform in [0, 1), one per call) and at a distance drawn uniformly in
         ``[lo, hi]`` times the target's width along x and height along y.
@@ -64,8 +64,6 @@ def ring_states(state, m: int, rng: np.random.Generator, shift=None, radii=RING_
     angle = 2.0 * np.pi * (np.arange(m) + rng.random()) / m
     radius = rng.uniform(lo, hi, size=m)
     out = np.repeat(s[None], m, axis=0)
-    if shift is not None:
-        out[:, 4:] += np.asarray(shift, dtype=np.float64).reshape(2)
     out[:, 4] += radius * w * np.cos(angle)
     out[:, 5] += radius * h * np.sin(angle)
     return out

@@ -204,6 +204,13 @@ class TrackerConfig:
         ``b_i`` of the background term: ``"nearest"``, the squared distance
         to the nearest ring box, or ``"nnls"``, the nonnegative least-squares
         residual over them (:func:`smtmvt.background.background_residuals`).
+    anchor_weight : float >= 0
+        Weight ``mu`` of the anchor term (:mod:`smtmvt.anchor`): each
+        candidate's residual in the likelihood gains ``mu`` times its
+        nonnegative least-squares residual over the first template alone (the
+        exact first-frame target), so that templates that drifted onto the
+        background cannot carry the box with them. 0: the paper's likelihood,
+        the default.
     feature_size : (int, int)
         Height, width (pixels) to which each candidate is warped for the HOG,
         LBP and color views.
@@ -342,6 +349,7 @@ class TrackerConfig:
     background_weight: float = 0.0
     background_samples: int = 12
     background_measure: str = "nearest"
+    anchor_weight: float = 0.0
     feature_size: tuple = (32, 32)
     color_size: tuple | None = None
     model: str = "smtmvt"
@@ -395,6 +403,7 @@ class TrackerConfig:
             "background_weight": self.background_weight >= 0,
             "background_samples": int(self.background_samples) >= 1,
             "background_measure": self.background_measure in ("nearest", "nnls"),
+            "anchor_weight": self.anchor_weight >= 0,
             "estimate": self.estimate in ("best", "mean"),
             "fixed_templates": 1 <= int(self.fixed_templates) <= int(self.n_templates),
             "narrow_fraction": 0 <= self.narrow_fraction <= 1,
@@ -453,6 +462,7 @@ class TrackerConfig:
             background_weight=0.0,
             background_samples=12,
             background_measure="nearest",
+            anchor_weight=0.0,
             feature_size=(32, 32),
             color_size=None,
             model="smtmvt",

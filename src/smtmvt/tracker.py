@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 from threadpoolctl import ThreadpoolController
 
+from .anchor import anchor_offsets
 from .background import background_offsets, ring_states
 from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
@@ -187,6 +188,19 @@ class Tracker:
             )
         return patches
 
+    def _background_views(self, frame: PreparedFrame, plane_scale: float = 1.0) -> list | None:
+        """The background term's dictionary (:mod:`smtmvt.background`): the views
+        computed for every candidate of ``config.background_samples`` boxes on a
+        ring around the current state, in the frame it was just estimated in
+        (where the ring does not overlap the target); None when the term is off.
+        The next frame's candidates are compared with them: an object that was
+        beside the target then is background now."""
+        cfg = self.config
+        if not cfg.background_weight:
+            return None
+        ring = ring_states(self._state, cfg.background_samples, self._rng)
+        return self._extract(self._patches(frame, ring, plane_scale), cfg.views[: self._n_first])
+
     def _weighted(self, views: list, first: int = 0) -> list:
         """``views`` (views ``first, first + 1, ...`` of ``config.views``) scaled by
         ``sqrt(config.view_weights)`` (unchanged when None): the coding and the
@@ -289,6 +303,7 @@ class Tracker:
         self._bases: list | None = None  # range_basis of each weighted dictionary, kept until a template changes
         self._particles = np.repeat(self._state[None], cfg.n_particles, axis=0)
         self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
+        self._background = self._background_views(prepared)
         self._frame_index = 0
         self._intensity_index = cfg.views.index("intensity") if "intensity" in cfg.views else None
         self._initialized = True
@@ -350,26 +365,23 @@ class Tracker:
             if shift is not None and self._velocity_share is not None:
                 shift = self._velocity_share * shift
             particles = propagate(particles, cfg.affine_std, self._rng, shift, self._spread, cfg.translation_power)
-            # the background term's ring around the predicted target (after the particles' draws)
-            ring = None
-            if cfg.background_weight:
-                ring = ring_states(self._state, cfg.background_samples, self._rng, cfg.velocity * self._velocity)
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
-        m = len(states)  # the candidates; the ring's states follow them in the batch
-        patches = self._patches(prepared, states if ring is None else np.concatenate([states, ring]), plane_scale)
+        patches = self._patches(prepared, states, plane_scale)
         # views computed for every candidate, and the views deferred (likelihood.observe)
         now, later = cfg.views[: self._n_first], cfg.views[self._n_first :]
         X = self._extract(patches, now)
         offset = None
-        if ring is not None:
-            with self._timed("likelihood"):
-                ring_views = [Xk[:, m:] for Xk in X]
-                X = [np.ascontiguousarray(Xk[:, :m]) for Xk in X]
+        with self._timed("likelihood"):
+            if self._background is not None:
                 offset = background_offsets(
-                    self._weighted(X), self._weighted(ring_views), cfg.background_weight, cfg.background_measure
+                    self._weighted(X), self._weighted(self._background), cfg.background_weight, cfg.background_measure
                 )
+            if cfg.anchor_weight:
+                first = self._weighted([Dk[:, 0] for Dk in self._templates.dictionaries[: len(now)]])
+                anchor = anchor_offsets(self._weighted(X), first, cfg.anchor_weight)
+                offset = anchor if offset is None else offset + anchor
         # A candidate mostly outside the image is not a valid observation.
         with self._timed("motion"):
             valid = inside_fraction(states, work_shape) >= 0.5
@@ -434,6 +446,7 @@ class Tracker:
         self._work_box = tuple(float(v) for v in affine_to_box(self._state))
         self._box = tuple(float(v) for v in self._from_work(self._work_box))
         self._particles, self._weights = particles, p
+        self._background = self._background_views(prepared, plane_scale)
         result = TrackResult(
             box=self._box,
             score=float(p[best]),
