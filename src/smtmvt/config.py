@@ -8,8 +8,9 @@ it in how the views are sampled (``scale_normalize``, ``antialias``,
 ``hog_plane``, ``lbp_plane``), in a 2x2 grid of color histograms
 (``color_grid``), in comparing the histograms by their square roots
 (``histogram_power``), in a constant-velocity term in the motion model
-(``velocity``) and in not resizing frames to 320x240, the best configuration
-measured.
+(``velocity``), in an anchor term toward the first template in the likelihood
+(``anchor_weight``) and in not resizing frames to 320x240, the best
+configuration measured.
 
 How the defaults were chosen (mean average overlap over the 18 sequences of
 ``shared/data/otb`` and ``extra``, the evaluation's seeds; one seed unless
@@ -26,7 +27,10 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
     with color_grid 3                                  0.541 over 3 seeds [4]
     with narrow_fraction 0.5, narrow_scale 0.25        0.550 over 3 seeds [5]
     with histogram_power 0.5                           0.585 over 3 seeds [6]
-      with velocity 0.5 (*)                            0.593 over 3 seeds [7]
+      with velocity 0.5                                0.593 over 3 seeds [7]
+        with anchor_weight 1 (*)                       0.626 over 3 seeds [11]
+          with anchor_weight 0.5                       0.598 over 3 seeds [11]
+          with anchor_weight 2                         0.572 over 3 seeds [11]
         with update_angle 50 instead of 60             0.537 over 3 seeds
         with update_angle 70 instead of 60             0.511 over 3 seeds
         with alpha 15 instead of 30                    0.587 over 3 seeds [8]
@@ -35,6 +39,13 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
         with velocity_fraction 0.5                     0.534 over 3 seeds [10]
         with anchor_cos 0.3                            0.586 over 3 seeds
         with affine_std scale terms 0.005 (MTT's)      0.540 over 3 seeds
+        with fixed_templates 3                         0.572 over 3 seeds
+        with fixed_templates 5                         0.567 over 3 seeds
+        with solver_tol 2e-3 instead of 1e-3           0.584 over 3 seeds [12]
+        with color_size 16x16                          0.550 over 3 seeds [12]
+        with background_weight 0.5                     0.521 over 3 seeds [13]
+        with background_weight 0.15, ring 1-1.5        0.559 over 3 seeds [13]
+        with background_weight 0.5, ring predicted     0.551 over 3 seeds [13]
       with velocity 0.25                               0.568 over 3 seeds
       with velocity 0.75                               0.572 over 3 seeds
   with translation_power 0.5                           0.517
@@ -106,6 +117,35 @@ and jumps to another player near frame 220), Singer2 0.45 -> 0.25, Bolt 0.39
 keep a random-walk hypothesis beside the constant-velocity one: per seed
 0.524 / 0.494 / 0.583. Walking2 0.34 -> 0.41, but Shaking 0.64 -> 0.24, Bolt
 0.39 -> 0.25, Car4 0.77 -> 0.65, Singer2 0.45 -> 0.34.
+
+[11] The anchor term (:mod:`smtmvt.anchor`): each candidate's residual gains
+its nonnegative least-squares residual over the first template alone.
+``bench/diagnose.py`` on Singer2's lost seed classed 29 of its first 44
+frames as drift (the first templates preferred the truth, the current ones
+the chosen box). At 1: per seed 0.635 / 0.639 / 0.602 against 0.610 / 0.571
+/ 0.598; otb 0.684 (was 0.637), extra 0.567 (0.549). Gains: Singer2 0.45 ->
+0.72, Walking2 0.34 -> 0.59, Basketball 0.47 -> 0.62, Shaking 0.64 -> 0.72,
+Freeman1 0.41 -> 0.46, FaceOcc1 0.72 -> 0.75, Soccer 0.28 -> 0.32; losses:
+Car4 0.77 -> 0.65 (the car grows and darkens), Bolt 0.39 -> 0.22 (the
+runner's pose changes every stride), Girl 0.72 -> 0.67. At 0.5: 0.598 (otb
+0.662, extra 0.533); at 2: 0.572 (David 0.68 -> 0.47, Shaking 0.64 -> 0.45,
+Subway 0.64 -> 0.49: the box no longer follows an appearance change).
+
+[12] Speed settings, not kept. ``solver_tol`` 2e-3: the solve stage 9.9 ->
+8.5 ms a frame on Crossing (2-3% of the frame) for 0.584 (Shaking 0.64 ->
+0.48, Singer2 0.45 -> 0.30, Bolt 0.39 -> 0.60). ``color_size`` 16x16: the
+warp stage 8.1 -> 3.9 ms a frame on the demo, but Singer2 0.45 -> 0.06,
+Subway 0.64 -> 0.32, Shaking 0.64 -> 0.37.
+
+[13] The background term (:mod:`smtmvt.background`), nearest-box measure
+unless said. Walking2 gains every time (0.34 -> 0.47-0.54, the man who
+walks across the target is unlike it), but a target among similar objects
+is itself close to the ring's boxes: Bolt 0.39 -> 0.09-0.24, Shaking 0.64
+-> 0.13-0.50, Singer2 0.45 -> 0.14 (at 0.5), Subway 0.64 -> 0.49. The ring
+also biases the choice toward its centre, where every candidate is farthest
+from it. With the ring taken around the predicted position in the current
+frame (and the NNLS measure) a fast target that outran the prediction fell
+inside the ring (Bolt 0.03).
 """
 
 from __future__ import annotations
@@ -197,7 +237,8 @@ class TrackerConfig:
         candidates, and a candidate's likelihood is lowered by ``exp(-alpha
         beta (b_max - b_i))``, ``b_i`` its residual over them (a candidate
         like the surroundings, such as a similar object near the target,
-        loses). 0: the paper's likelihood, the default.
+        loses). 0: the paper's likelihood, the default (0.15 and 0.5 measured
+        in the table above, not kept).
     background_samples : int
         Boxes on the background ring (used when ``background_weight`` > 0).
     background_measure : str
@@ -209,8 +250,14 @@ class TrackerConfig:
         candidate's residual in the likelihood gains ``mu`` times its
         nonnegative least-squares residual over the first template alone (the
         exact first-frame target), so that templates that drifted onto the
-        background cannot carry the box with them. 0: the paper's likelihood,
-        the default.
+        background cannot carry the box with them. Default 1 (measured in the
+        table above: 0.626 against 0.593 without); 0: the paper's likelihood.
+    term_views : tuple of str
+        The views the anchor and background terms compare (those of ``views``
+        among them; a term with none of them is 0): views computed for every
+        candidate, so none of them may be in ``deferred_views`` while a term
+        is on. Default intensity, color and HOG (the LBP view is deferred),
+        as measured.
     feature_size : (int, int)
         Height, width (pixels) to which each candidate is warped for the HOG,
         LBP and color views.
@@ -218,7 +265,8 @@ class TrackerConfig:
         Height, width (pixels) of the color view's patches when they differ
         from ``feature_size`` (a histogram needs fewer samples than HOG
         and LBP need pixels; the anti-aliasing blur follows the coarser
-        step). None: ``feature_size``, the default.
+        step). None: ``feature_size``, the default (16x16 measured in the
+        table above, not kept).
     model : str
         Observation model, a key of :data:`smtmvt.solvers.SOLVERS`: ``"smtmvt"``
         (the paper's, default) or one of the comparison models of the paper's
@@ -349,7 +397,8 @@ class TrackerConfig:
     background_weight: float = 0.0
     background_samples: int = 12
     background_measure: str = "nearest"
-    anchor_weight: float = 0.0
+    anchor_weight: float = 1.0
+    term_views: tuple = ("intensity", "color", "hog")
     feature_size: tuple = (32, 32)
     color_size: tuple | None = None
     model: str = "smtmvt"
@@ -413,6 +462,14 @@ class TrackerConfig:
         for name, ok in checks.items():
             if not ok:
                 raise ValueError(f"TrackerConfig: invalid {name}={getattr(self, name)!r}")
+        object.__setattr__(self, "term_views", tuple(self.term_views))
+        if self.anchor_weight or self.background_weight:
+            late = [v for v in self.term_views if v in self.views and v in self.deferred_views]
+            if late:
+                raise ValueError(
+                    f"TrackerConfig: term_views {late} are also in deferred_views={self.deferred_views!r}; "
+                    "the anchor and background terms need their views for every candidate"
+                )
         object.__setattr__(self, "views", tuple(self.views))
         object.__setattr__(self, "deferred_views", tuple(self.deferred_views))
         object.__setattr__(self, "affine_std", tuple(float(s) for s in self.affine_std))
@@ -463,6 +520,7 @@ class TrackerConfig:
             background_samples=12,
             background_measure="nearest",
             anchor_weight=0.0,
+            term_views=("intensity", "color", "hog"),
             feature_size=(32, 32),
             color_size=None,
             model="smtmvt",

@@ -7,7 +7,8 @@ Data flows one way, one stage per module::
           --warp--------> candidate patches, one batched remap per plane
           --features----> K views, (d_k, n) normalized columns
           --solvers-----> codes C (K, N, n) and outliers E over the templates
-          --likelihood--> p_i = exp(-alpha * sum_k ||D^k c_i^k - x_i^k||^2)
+          --likelihood--> p_i = exp(-alpha * (sum_k ||D^k c_i^k - x_i^k||^2 + a_i))
+                          (a_i: the anchor term, smtmvt.anchor)
           --state-------> best candidate = result; template update; resampling
 
 Usage (like OpenCV's trackers)::
@@ -53,8 +54,10 @@ class TrackResult:
     Attributes
     ----------
     box : (x, y, w, h) floats, 0-based pixels.
-    score : likelihood ``exp(-alpha * residual)`` of the chosen candidate, in
-        (0, 1]; low values mean the target is poorly explained (lost or occluded).
+    score : likelihood ``exp(-alpha * (residual + terms))`` of the chosen
+        candidate, in (0, 1], ``terms`` the anchor and background terms
+        (:mod:`smtmvt.anchor`, :mod:`smtmvt.background`; 0 when off); low
+        values mean the target is poorly explained (lost or occluded).
     residual : its reconstruction residual ``sum_k ||D^k c^k - x^k||^2``.
     occluded : the outlier term flagged this frame as occluded.
     template_replaced : index of the template replaced this frame, or None.
@@ -199,7 +202,17 @@ class Tracker:
         if not cfg.background_weight:
             return None
         ring = ring_states(self._state, cfg.background_samples, self._rng)
-        return self._extract(self._patches(frame, ring, plane_scale), cfg.views[: self._n_first])
+        return self._extract(self._patches(frame, ring, plane_scale), [cfg.views[i] for i in self._term_index])
+
+    def _terms_of(self, views: list, ring: bool = False) -> list:
+        """The term views (``config.term_views``) of a list of views in ``config.views``
+        order (``ring``: already only the term views), scaled as :meth:`_weighted`."""
+        w = self.config.view_weights
+        out = []
+        for j, i in enumerate(self._term_index):
+            v = views[j] if ring else views[i]
+            out.append(v if w is None else np.float32(np.sqrt(w[i])) * v)
+        return out
 
     def _weighted(self, views: list, first: int = 0) -> list:
         """``views`` (views ``first, first + 1, ...`` of ``config.views``) scaled by
@@ -283,6 +296,8 @@ class Tracker:
         while n_first > 0 and cfg.views[n_first - 1] in cfg.deferred_views:
             n_first -= 1
         self._n_first = n_first if n_first > 0 and self._prune_eps(cfg.n_particles) > 0 else len(cfg.views)
+        # the views of the background and anchor terms (config.term_views; never deferred)
+        self._term_index = [cfg.views.index(v) for v in cfg.term_views if v in cfg.views]
         self._rng = np.random.default_rng(cfg.seed)
         self._state = box_to_affine(wb)
         self._init_state = self._state.copy()
@@ -374,13 +389,14 @@ class Tracker:
         X = self._extract(patches, now)
         offset = None
         with self._timed("likelihood"):
-            if self._background is not None:
+            X_terms = self._terms_of(X)
+            if self._background is not None and X_terms:
                 offset = background_offsets(
-                    self._weighted(X), self._weighted(self._background), cfg.background_weight, cfg.background_measure
+                    X_terms, self._terms_of(self._background, ring=True), cfg.background_weight, cfg.background_measure
                 )
-            if cfg.anchor_weight:
-                first = self._weighted([Dk[:, 0] for Dk in self._templates.dictionaries[: len(now)]])
-                anchor = anchor_offsets(self._weighted(X), first, cfg.anchor_weight)
+            if cfg.anchor_weight and X_terms:
+                first = self._terms_of([Dk[:, 0] for Dk in self._templates.dictionaries])
+                anchor = anchor_offsets(X_terms, first, cfg.anchor_weight)
                 offset = anchor if offset is None else offset + anchor
         # A candidate mostly outside the image is not a valid observation.
         with self._timed("motion"):
