@@ -170,8 +170,15 @@ def test_anchor_term_moves_the_boxes_only_when_on(demo):
         TrackerConfig(anchor_weight=-1.0)
 
 
-def test_term_views_must_not_be_deferred():
+def test_term_views_must_not_be_deferred(demo):
     with pytest.raises(ValueError, match="deferred_views"):
         TrackerConfig(deferred_views=("hog", "lbp"))  # HOG is a term view of the default anchor term
-    TrackerConfig(deferred_views=("hog", "lbp"), term_views=("intensity", "color"))
-    TrackerConfig(deferred_views=("hog", "lbp"), anchor_weight=0.0)  # no term: nothing to compute for all
+    frames, gt = demo
+    for cfg in (
+        TrackerConfig(deferred_views=("hog", "lbp"), term_views=("intensity", "color"), n_particles=60, seed=1),
+        TrackerConfig(deferred_views=("hog", "lbp"), anchor_weight=0.0, n_particles=60, seed=1),  # no term
+    ):
+        t = Tracker(cfg)
+        t.init(frames[0], gt[0])
+        boxes = np.array([t.update(f).box for f in frames[1:4]])
+        assert np.all(np.isfinite(boxes))

@@ -389,7 +389,8 @@ class Tracker:
         X = self._extract(patches, now)
         offset = None
         with self._timed("likelihood"):
-            X_terms = self._terms_of(X)
+            # (a term view is never deferred while a term is on: TrackerConfig checks it)
+            X_terms = self._terms_of(X) if cfg.anchor_weight or cfg.background_weight else []
             if self._background is not None and X_terms:
                 offset = background_offsets(
                     X_terms, self._terms_of(self._background, ring=True), cfg.background_weight, cfg.background_measure
