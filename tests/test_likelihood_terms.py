@@ -182,3 +182,19 @@ def test_term_views_must_not_be_deferred(demo):
         t.init(frames[0], gt[0])
         boxes = np.array([t.update(f).box for f in frames[1:4]])
         assert np.all(np.isfinite(boxes))
+
+
+def test_term_views_are_weighted_like_the_coding(demo):
+    """With view_weights, the ring's term views are scaled by sqrt(weight), as the
+    candidates' views are for the coding (the same ring: same seed, same frame)."""
+    frames, gt = demo
+    cfg = TrackerConfig(n_particles=60, seed=2, background_weight=0.5, background_samples=6)
+    plain, weighted = Tracker(cfg), Tracker(cfg.replace(view_weights=(4.0, 1.0, 9.0, 1.0)))
+    for t in (plain, weighted):
+        t.init(frames[0], gt[0])
+    assert len(weighted._background) == 3  # intensity, color, HOG
+    for k, scale in enumerate((2.0, 1.0, 3.0)):
+        np.testing.assert_allclose(weighted._background[k], scale * plain._background[k], rtol=1e-6)
+    x = [np.ones((Dk.shape[0], 2), np.float32) for Dk in plain._templates.dictionaries]
+    np.testing.assert_allclose(weighted._terms_of(x)[2], 3.0 * x[2])
+    assert weighted.update(frames[1]).score > 0

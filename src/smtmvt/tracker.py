@@ -192,36 +192,35 @@ class Tracker:
         return patches
 
     def _background_views(self, frame: PreparedFrame, plane_scale: float = 1.0) -> list | None:
-        """The background term's dictionary (:mod:`smtmvt.background`): the views
-        computed for every candidate of ``config.background_samples`` boxes on a
-        ring around the current state, in the frame it was just estimated in
-        (where the ring does not overlap the target); None when the term is off.
-        The next frame's candidates are compared with them: an object that was
-        beside the target then is background now."""
+        """The background term's dictionary (:mod:`smtmvt.background`): the term
+        views (weighted, as :meth:`_terms_of`) of ``config.background_samples``
+        boxes on a ring around the current state, in the frame it was just
+        estimated in (where the ring does not overlap the target); None when the
+        term is off. The next frame's candidates are compared with them: an
+        object that was beside the target then is background now."""
         cfg = self.config
         if not cfg.background_weight:
             return None
         ring = ring_states(self._state, cfg.background_samples, self._rng)
-        return self._extract(self._patches(frame, ring, plane_scale), [cfg.views[i] for i in self._term_index])
+        views = self._extract(self._patches(frame, ring, plane_scale), [cfg.views[i] for i in self._term_index])
+        return self._weighted(views, index=self._term_index)
 
-    def _terms_of(self, views: list, ring: bool = False) -> list:
-        """The term views (``config.term_views``) of a list of views in ``config.views``
-        order (``ring``: already only the term views), scaled as :meth:`_weighted`."""
-        w = self.config.view_weights
-        out = []
-        for j, i in enumerate(self._term_index):
-            v = views[j] if ring else views[i]
-            out.append(v if w is None else np.float32(np.sqrt(w[i])) * v)
-        return out
+    def _terms_of(self, views: list) -> list:
+        """The term views (``config.term_views``) of ``views`` (in ``config.views``
+        order), weighted as by :meth:`_weighted`."""
+        return self._weighted([views[i] for i in self._term_index], index=self._term_index)
 
-    def _weighted(self, views: list, first: int = 0) -> list:
-        """``views`` (views ``first, first + 1, ...`` of ``config.views``) scaled by
-        ``sqrt(config.view_weights)`` (unchanged when None): the coding and the
-        likelihood then weigh view k's squared residual by its weight."""
+    def _weighted(self, views: list, first: int = 0, index=None) -> list:
+        """``views`` (views ``first, first + 1, ...`` of ``config.views``, or the
+        views of indices ``index``) scaled by ``sqrt(config.view_weights)``
+        (unchanged when None): the coding and the likelihood then weigh view k's
+        squared residual by its weight."""
         w = self.config.view_weights
         if w is None:
             return list(views)
-        return [np.float32(np.sqrt(wk)) * v for wk, v in zip(w[first:], views)]
+        if index is None:
+            index = range(first, first + len(views))
+        return [np.float32(np.sqrt(w[i])) * v for i, v in zip(index, views)]
 
     def _template_states(self, state: np.ndarray) -> np.ndarray:
         """The N template states: the exact first box, then N-1 jittered copies.
@@ -392,9 +391,7 @@ class Tracker:
             # (a term view is never deferred while a term is on: TrackerConfig checks it)
             X_terms = self._terms_of(X) if cfg.anchor_weight or cfg.background_weight else []
             if self._background is not None and X_terms:
-                offset = background_offsets(
-                    X_terms, self._terms_of(self._background, ring=True), cfg.background_weight, cfg.background_measure
-                )
+                offset = background_offsets(X_terms, self._background, cfg.background_weight, cfg.background_measure)
             if cfg.anchor_weight and X_terms:
                 first = self._terms_of([Dk[:, 0] for Dk in self._templates.dictionaries])
                 anchor = anchor_offsets(X_terms, first, cfg.anchor_weight)

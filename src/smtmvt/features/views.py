@@ -101,10 +101,15 @@ class Patches:
             if value is None:
                 continue
             plane = _as_float32(name, value, 3, "(n, fh, fw)")
-            if plane.shape[0] != n or (size is not None and plane.shape != size):
+            if plane.shape[0] != n:
                 raise ValueError(
-                    f"Patches.{name} has shape {plane.shape} but {'Patches.gray ' + str(size) if size else f'n = {n}'}; "
-                    "gray and raw are warped at the feature size, one patch per candidate"
+                    f"Patches arrays disagree on the number of patches n: intensity {n}, {name} {plane.shape[0]} "
+                    "(one patch per candidate)"
+                )
+            if size is not None and plane.shape != size:
+                raise ValueError(
+                    f"Patches.{name} has shape {plane.shape} but Patches.gray {size}; "
+                    "both are warped at the feature size"
                 )
             size = plane.shape
             object.__setattr__(self, name, plane)
