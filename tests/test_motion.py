@@ -90,3 +90,32 @@ def test_pull_shape_moves_aspect_and_skew_only():
         np.testing.assert_allclose(pulled[:, 1:3] - states[:, 1:3], strength * (ref[1:3] - states[:, 1:3]), atol=1e-15)
     full = affine_to_box(pull_shape(states, ref, 1.0))
     np.testing.assert_allclose(full[:, 3] / full[:, 2], 2.0, rtol=1e-3)  # the reference's 60 / 30
+
+
+def test_aspect_std_moves_scale_and_aspect_by_their_own_deviations():
+    p0 = np.repeat(box_to_affine((100, 100, 40, 80))[None], 40000, axis=0)
+    std = (0.01, 0.0, 0.0, 0.01, 4.0, 4.0)
+    for aspect in (0.004, 0.02):
+        p1 = propagate(p0, std, np.random.default_rng(7), aspect_std=aspect)
+        log_scale = 0.5 * np.log(p1[:, 0] * p1[:, 3] / (p0[:, 0] * p0[:, 3]))
+        log_aspect = np.log((p1[:, 3] / p1[:, 0]) / (p0[:, 3] / p0[:, 0]))
+        assert np.std(log_scale) == pytest.approx(0.01, rel=0.03)
+        assert np.std(log_aspect) == pytest.approx(aspect, rel=0.03)
+        assert abs(np.corrcoef(log_scale, log_aspect)[0, 1]) < 0.03
+    # without it the axes move independently: the aspect twice as much as the scale
+    p1 = propagate(p0, std, np.random.default_rng(7))
+    log_scale = 0.5 * np.log(p1[:, 0] * p1[:, 3] / (p0[:, 0] * p0[:, 3]))
+    log_aspect = np.log((p1[:, 3] / p1[:, 0]) / (p0[:, 3] / p0[:, 0]))
+    assert np.std(log_scale) == pytest.approx(0.01 / np.sqrt(2), rel=0.03)
+    assert np.std(log_aspect) == pytest.approx(0.01 * np.sqrt(2), rel=0.03)
+
+
+def test_aspect_std_zero_keeps_the_aspect_and_the_random_stream():
+    p0 = np.repeat(box_to_affine((10, 20, 30, 45))[None], 50, axis=0)
+    std = (0.02, 0.0, 0.0, 0.02, 4.0, 4.0)
+    fixed = propagate(p0, std, np.random.default_rng(8), aspect_std=0.0)
+    np.testing.assert_allclose(fixed[:, 3] / fixed[:, 0], 1.5, rtol=1e-12)
+    free = propagate(p0, std, np.random.default_rng(8))
+    # the same draws: the translation is unchanged, only the shape noise is recombined
+    np.testing.assert_array_equal(fixed[:, 4:], free[:, 4:])
+    np.testing.assert_allclose(fixed[:, 0] / p0[:, 0], free[:, 0] / p0[:, 0], rtol=1e-12)

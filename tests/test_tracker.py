@@ -246,6 +246,19 @@ def test_full_shape_pull_keeps_the_first_boxes_aspect(demo):
         TrackerConfig(shape_pull=1.5)
 
 
+def test_aspect_std_zero_tracks_with_the_first_boxes_aspect(demo):
+    """aspect_std 0: the random walk changes the box's scale, never its aspect
+    (the skew terms alone move it, by far less than 1%); the free walk's boxes
+    change aspect by several percent over the same frames."""
+    fixed = _track(demo.frames[:25], demo.groundtruth[0], FAST.replace(aspect_std=0.0))
+    free = _track(demo.frames[:25], demo.groundtruth[0], FAST)
+    drift = [np.abs(np.log(b[:, 3] / b[:, 2]) - np.log(b[0, 3] / b[0, 2])).max() for b in (fixed, free)]
+    assert drift[0] < 0.005 < 0.03 < drift[1]
+    assert np.ptp(fixed[:, 2]) > 0.5  # the scale still moved
+    with pytest.raises(ValueError, match="aspect_std"):
+        TrackerConfig(aspect_std=-0.01)
+
+
 def test_velocity_fraction_moves_that_share_of_the_particles(demo):
     """velocity_fraction 0.5: every other particle is moved by the velocity term, the
     others stay (no noise here, so the motion is the shift alone)."""

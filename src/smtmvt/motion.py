@@ -20,7 +20,13 @@ __all__ = ["propagate", "pull_shape", "resample"]
 
 
 def propagate(
-    params, std, rng: np.random.Generator, shift=None, spread=None, translation_power: float = 1.0
+    params,
+    std,
+    rng: np.random.Generator,
+    shift=None,
+    spread=None,
+    translation_power: float = 1.0,
+    aspect_std: float | None = None,
 ) -> np.ndarray:
     """One step of the random walk.
 
@@ -38,6 +44,14 @@ def propagate(
         pixels: 1 (L1-APG, MTT) grows it with the target's size, 0.5 grows it
         as the square root (large targets move about as many pixels as small
         ones between frames).
+    aspect_std : None perturbs ``a11`` and ``a22`` independently, by
+        ``std[0]`` and ``std[3]`` in log space (L1-APG, MTT): the log scale
+        ``(log a11 + log a22) / 2`` then moves by ``std / sqrt(2)`` and the log
+        aspect ``log(a22 / a11)`` by ``sqrt(2) std``, twice as much. A float
+        perturbs the scale and the aspect instead: both diagonal terms by the
+        same ``exp(std[0] u)`` and the log aspect by ``aspect_std v`` (``u, v``
+        the same standard normal draws), so a box's size can follow the
+        target faster than its shape changes.
 
     Returns
     -------
@@ -51,8 +65,13 @@ def propagate(
     noise = rng.standard_normal(p.shape)
     if spread is not None:
         noise *= np.asarray(spread, dtype=np.float64).reshape(-1, 1)
-    p[:, 0] *= np.exp(s[0] * noise[:, 0])
-    p[:, 3] *= np.exp(s[3] * noise[:, 3])
+    if aspect_std is None:
+        p[:, 0] *= np.exp(s[0] * noise[:, 0])
+        p[:, 3] *= np.exp(s[3] * noise[:, 3])
+    else:
+        half = 0.5 * float(aspect_std) * noise[:, 3]
+        p[:, 0] *= np.exp(s[0] * noise[:, 0] - half)
+        p[:, 3] *= np.exp(s[0] * noise[:, 0] + half)
     p[:, 1] += s[1] * sc[:, 0] * noise[:, 1]
     p[:, 2] += s[2] * sc[:, 0] * noise[:, 2]
     p[:, 4:] += s[4:] * sc**translation_power * noise[:, 4:]

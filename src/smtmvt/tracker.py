@@ -378,7 +378,9 @@ class Tracker:
             shift = cfg.velocity * self._velocity if cfg.velocity else None
             if shift is not None and self._velocity_share is not None:
                 shift = self._velocity_share * shift
-            particles = propagate(particles, cfg.affine_std, self._rng, shift, self._spread, cfg.translation_power)
+            particles = propagate(
+                particles, cfg.affine_std, self._rng, shift, self._spread, cfg.translation_power, cfg.aspect_std
+            )
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
