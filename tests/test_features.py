@@ -648,3 +648,13 @@ def test_normalize_columns_equals_its_float64_array_expression_bit_for_bit():
         if trial % 2:
             V = V.astype(np.float64)
         assert_array_equal(normalize_columns(V), reference(V), err_msg=f"trial {trial}")
+
+
+def test_cell_map_splits_each_axis_into_nearly_equal_runs():
+    from smtmvt.features.cells import cell_map
+
+    cells = cell_map(7, 10, 3)  # rows 2 / 2 / 3 (edges 0, 2, 4, 7), columns 3 / 3 / 4
+    assert cells.shape == (7, 10)
+    assert cells[:, 0].tolist() == [0, 0, 3, 3, 6, 6, 6]
+    assert cells[0].tolist() == [0, 0, 0, 1, 1, 1, 2, 2, 2, 2]
+    assert np.bincount(cells.ravel()).tolist() == [6, 6, 8, 6, 6, 8, 9, 9, 12]

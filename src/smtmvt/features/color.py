@@ -32,6 +32,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .cells import cell_map
+
 __all__ = ["histogram_power", "COLOR_BINS", "color_histograms", "color_view", "soft_binning_matrix"]
 
 COLOR_BINS = 16  # bins per channel
@@ -105,11 +107,7 @@ def _grid_histograms(colors: np.ndarray, grid: int, bins: int) -> np.ndarray:
     ``grid x grid`` layout (cell ``j`` along an axis of length L covers
     ``[j L // grid, (j + 1) L // grid)``), each channel of a cell summing to 1."""
     n, h, w, c = colors.shape
-    rows = (np.arange(grid + 1) * h) // grid
-    cols = (np.arange(grid + 1) * w) // grid
-    cell_of_row = np.searchsorted(rows, np.arange(h), side="right") - 1
-    cell_of_col = np.searchsorted(cols, np.arange(w), side="right") - 1
-    cell = cell_of_row[:, None] * grid + cell_of_col[None, :]  # (h, w)
+    cell = cell_map(h, w, grid)  # (h, w)
     row_of_value = (cell[:, :, None] * c + np.arange(c)).ravel()  # histogram row of each (y, x, channel)
     W = soft_binning_matrix(bins, _LEVELS)
     lo = np.argmax(W > 0, axis=1)  # each level's first bin; the second is lo + 1 (weight 0 past the end)
@@ -118,7 +116,7 @@ def _grid_histograms(colors: np.ndarray, grid: int, bins: int) -> np.ndarray:
     hist = np.zeros((n, grid * grid * c, bins))
     flat = np.ascontiguousarray(colors, dtype=np.float32).reshape(n, h * w * c)
     _cell_histograms(flat, row_of_value, lo, w_lo, w_hi, hist)
-    area = (np.diff(rows)[:, None] * np.diff(cols)[None, :]).reshape(1, grid * grid, 1, 1)
+    area = np.bincount(cell.ravel(), minlength=grid * grid).reshape(1, grid * grid, 1, 1)
     return (hist.reshape(n, grid * grid, c, bins) / area).reshape(n, -1).astype(np.float32)
 
 

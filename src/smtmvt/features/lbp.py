@@ -35,6 +35,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .cells import cell_map
 from .color import histogram_power
 
 __all__ = ["lbp_codes", "lbp_histograms", "lbp_view", "LBP_P", "LBP_R", "LBP_GRID"]
@@ -156,12 +157,6 @@ def lbp_codes(images: np.ndarray, P: int = LBP_P, R: float = LBP_R) -> np.ndarra
     return _lbp_kernel(np.ascontiguousarray(images), rp, cp, pad, out)
 
 
-def _cell_index(length: int, grid: int) -> np.ndarray:
-    """Cell of each pixel along an axis: j for ``j L // grid <= x < (j + 1) L // grid``."""
-    bounds = (np.arange(grid + 1) * length) // grid
-    return np.searchsorted(bounds, np.arange(length), side="right") - 1
-
-
 def lbp_histograms(codes: np.ndarray, n_codes: int, grid: int = LBP_GRID) -> np.ndarray:
     """Per-cell code histograms over a ``grid x grid`` layout of cells.
 
@@ -187,9 +182,7 @@ def lbp_histograms(codes: np.ndarray, n_codes: int, grid: int = LBP_GRID) -> np.
     grid = int(grid)
     if not 1 <= grid <= min(h, w):
         raise ValueError(f"grid must be in [1, {min(h, w)}] for {h}x{w} patches, got {grid}")
-    cell_row = _cell_index(h, grid)
-    cell_col = _cell_index(w, grid)
-    cell = cell_row[:, None] * grid + cell_col[None, :]
+    cell = cell_map(h, w, grid)
     idx = (np.arange(n)[:, None, None] * (grid * grid) + cell) * n_codes + codes
     code_counts = np.bincount(idx.ravel(), minlength=n * grid * grid * n_codes)
     pixels = np.bincount(cell.ravel(), minlength=grid * grid)  # pixels per cell
