@@ -15,6 +15,9 @@ it records:
   truth's (1: the ground truth would have been chosen);
 - the residuals of the chosen box and of the ground truth under the current
   templates, and under the **first frame's** templates (``*_first``);
+- their anchor terms (``*_anchor``, :mod:`smtmvt.anchor`: ``anchor_weight``
+  times the residual over the first template alone, 0 when the term is off),
+  the part of a candidate's score ``residual + anchor`` besides its residual;
 - whether a template was replaced and whether the frame was flagged occluded.
 
 A frame fails when its overlap is below 0.5 (OTB's success threshold). A
@@ -45,6 +48,7 @@ from pathlib import Path
 import numpy as np
 
 from smtmvt import Tracker, TrackerConfig, open_sequence
+from smtmvt.anchor import anchor_offsets
 from smtmvt.evaluation.metrics import overlap_ratio
 from smtmvt.geometry import box_to_affine
 from smtmvt.preprocess import prepare_frame
@@ -62,14 +66,17 @@ FIELDS = [
     "chosen_residual",
     "gt_residual_first",
     "chosen_residual_first",
+    "gt_anchor",
+    "chosen_anchor",
     "replaced",
     "occluded",
     "cls",
 ]
 
 
-def residuals_under(tracker: Tracker, frame, boxes, dictionaries) -> np.ndarray:
-    """Residuals of ``boxes`` (m, 4) under ``dictionaries`` (e.g. the first frame's).
+def residuals_under(tracker: Tracker, frame, boxes, dictionaries) -> tuple[np.ndarray, np.ndarray]:
+    """Residuals of ``boxes`` (m, 4) under ``dictionaries`` (the first frame's),
+    and their anchor terms ``(m,)`` (over the first template, 0 when off).
 
     Uses the tracker's own views and observation model (private members: this
     is a diagnosis tool, it reads the tracker's internals without changing them).
@@ -77,7 +84,11 @@ def residuals_under(tracker: Tracker, frame, boxes, dictionaries) -> np.ndarray:
     prepared = prepare_frame(frame, "frame", tracker._channels)
     X = tracker._views(prepared, box_to_affine(np.asarray(boxes, dtype=np.float64)).reshape(-1, 6))
     C, _ = tracker._code(X, dictionaries)
-    return reconstruction_residual(X, dictionaries, C)
+    anchor = np.zeros(len(boxes))
+    if tracker.config.anchor_weight:
+        first = tracker._terms_of([Dk[:, 0] for Dk in dictionaries])
+        anchor = anchor_offsets(tracker._terms_of(X), first, tracker.config.anchor_weight)
+    return reconstruction_residual(X, dictionaries, C), anchor
 
 
 def classify(row: dict) -> str:
@@ -107,7 +118,7 @@ def diagnose(seq, config: TrackerConfig, max_frames: int | None = None) -> list[
         p_gt = float(detail.probe_likelihood[0])
         r_gt = float(detail.observation.residual[len(detail.particles)])
         chosen = np.asarray(result.box)
-        first_res = residuals_under(tracker, frame, [g, chosen], first)
+        first_res, anchor = residuals_under(tracker, frame, [g, chosen], first)
         row = dict(
             frame=i + 1,
             overlap=float(overlap_ratio(chosen[None], g[None])[0]),
@@ -119,6 +130,8 @@ def diagnose(seq, config: TrackerConfig, max_frames: int | None = None) -> list[
             chosen_residual=float(result.residual),
             gt_residual_first=float(first_res[0]),
             chosen_residual_first=float(first_res[1]),
+            gt_anchor=float(anchor[0]),
+            chosen_anchor=float(anchor[1]),
             replaced=result.template_replaced is not None,
             occluded=bool(result.occluded),
         )
@@ -162,6 +175,9 @@ def plot(rows: list[dict], path: Path, title: str) -> None:
     ax[2].plot(f, [r["chosen_residual"] for r in rows], label="chosen")
     ax[2].plot(f, [r["gt_residual"] for r in rows], label="ground truth")
     ax[2].plot(f, [r["gt_residual_first"] for r in rows], lw=0.8, label="ground truth, first templates")
+    if any(r["gt_anchor"] or r["chosen_anchor"] for r in rows):
+        ax[2].plot(f, [r["chosen_anchor"] for r in rows], lw=0.8, ls="--", label="chosen, anchor term")
+        ax[2].plot(f, [r["gt_anchor"] for r in rows], lw=0.8, ls="--", label="ground truth, anchor term")
     ax[2].set_ylabel("residual")
     ax[2].set_xlabel("frame")
     ax[2].legend(fontsize=7)
