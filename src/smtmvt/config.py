@@ -349,6 +349,14 @@ class TrackerConfig:
         this a grown target's views drift away from its first templates,
         and a box smaller than the target matches them better (the demo's
         scale change). False: the planes of the working frame itself (the paper).
+    crop_planes : bool
+        Compute each frame's planes (gray, color, Tan-Triggs) only where the
+        frame's candidates read them (the particles' extent grown by the
+        smoothing's reach, :func:`smtmvt.preprocess.plane_window`); Tan-Triggs'
+        contrast equalization then takes its statistics over that region
+        instead of the whole frame. The cost of a frame then follows the
+        search region, not the frame size. False: whole frames (the paper).
+        Forced off while ``background_weight`` > 0 (the ring reads farther).
     antialias : float
         Smooth each plane before sampling it on the patch grids, by a Gaussian
         of ``antialias`` times the sampling step (target size over patch size,
@@ -430,6 +438,7 @@ class TrackerConfig:
     prune_eps: float = 1e-3
     frame_size: tuple | None = None
     scale_normalize: bool = True
+    crop_planes: bool = False
     antialias: float = 1.0
     hog_plane: str = "gray"
     lbp_plane: str = "gray"
@@ -553,6 +562,7 @@ class TrackerConfig:
             view_weights=None,
             frame_size=(320, 240),
             scale_normalize=False,
+            crop_planes=False,
             antialias=0.0,
             hog_plane="tan_triggs",
             lbp_plane="tan_triggs",

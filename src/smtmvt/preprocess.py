@@ -10,14 +10,25 @@ the whole gray frame, before any candidate is cropped.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import cv2
 import numpy as np
 
 from .features import tan_triggs
+from .features.tan_triggs import TAN_TRIGGS_REACH
 
-__all__ = ["PreparedFrame", "prepare_frame", "resize_frame", "sample_window", "smooth", "smooth_reach", "to_unit_range"]
+__all__ = [
+    "PreparedFrame",
+    "plane_window",
+    "prepare_crop",
+    "prepare_frame",
+    "resize_frame",
+    "sample_window",
+    "smooth",
+    "smooth_reach",
+    "to_unit_range",
+]
 
 
 @dataclass(frozen=True)
@@ -29,19 +40,50 @@ class PreparedFrame:
     normalized : (H, W) float32 Tan-Triggs output (values in [-10, 10]).
     color : (H, W, C) float32 in [0, 1]; C = 3 (RGB) or 1 (grayscale frame).
     gray : (H, W) float32 gray frame in [0, 1] (before Tan-Triggs).
+    origin : (x, y) float, where the planes' pixel (0, 0) sits in the whole
+        plane (pixel-centre coordinates): a crop holds the point ``(u, v)`` of
+        the whole plane at ``(u - x, v - y)``. (0, 0) for a whole frame.
+    full_shape : (H, W) of the whole plane, or None when the planes are it.
     """
 
     normalized: np.ndarray
     color: np.ndarray
     gray: np.ndarray
+    origin: tuple = (0.0, 0.0)
+    full_shape: tuple | None = None
 
     @property
     def shape(self) -> tuple:
+        """(H, W) of the planes held."""
         return self.normalized.shape
 
+    @property
+    def plane_shape(self) -> tuple:
+        """(H, W) of the whole plane the planes held are a crop of."""
+        return self.full_shape if self.full_shape is not None else self.shape
 
-def to_unit_range(frame: np.ndarray, where: str = "frame") -> np.ndarray:
-    """Validate ``frame`` and return it as float32 in [0, 1], ``(H, W)`` or ``(H, W, 3)``."""
+
+def to_unit_range(frame: np.ndarray, where: str = "frame", crop=None) -> np.ndarray:
+    """Validate ``frame`` and return it as float32 in [0, 1], ``(H, W)`` or ``(H, W, 3)``.
+
+    ``crop`` : optional ``(x0, y0, x1, y1)`` int: return only the pixels
+    ``[y0:y1, x0:x1]``, the same values as cropping the whole result (an
+    8- or 16-bit frame is converted there only; a float frame is checked and
+    scaled as a whole).
+    """
+    a = _checked_image(frame, where)
+    if crop is not None:
+        x0, y0, x1, y1 = (int(v) for v in crop)
+        if not (0 <= x0 < x1 <= a.shape[1] and 0 <= y0 < y1 <= a.shape[0]):
+            raise ValueError(f"{where}: crop {(x0, y0, x1, y1)} is not inside the {a.shape[1]}x{a.shape[0]} image")
+        if a.dtype in (np.uint8, np.uint16):
+            return _unit_float(a[y0:y1, x0:x1], where)
+        return _unit_float(a, where)[y0:y1, x0:x1]
+    return _unit_float(a, where)
+
+
+def _checked_image(frame, where: str) -> np.ndarray:
+    """``frame`` as an (H, W) or (H, W, 3) array (alpha or a single channel dropped)."""
     a = np.asarray(frame)
     if a.ndim == 3 and a.shape[2] == 4:
         a = a[:, :, :3]
@@ -51,6 +93,11 @@ def to_unit_range(frame: np.ndarray, where: str = "frame") -> np.ndarray:
         raise ValueError(f"{where}: expected an (H, W) or (H, W, 3) image, got shape {a.shape}")
     if a.shape[0] < 2 or a.shape[1] < 2:
         raise ValueError(f"{where}: image of shape {a.shape} is too small")
+    return a
+
+
+def _unit_float(a: np.ndarray, where: str) -> np.ndarray:
+    """A checked image as float32 in [0, 1] by its dtype."""
     if a.dtype == np.uint8:
         return a.astype(np.float32) / 255.0
     if a.dtype == np.uint16:
@@ -67,7 +114,7 @@ def to_unit_range(frame: np.ndarray, where: str = "frame") -> np.ndarray:
     return np.clip(f, 0.0, 1.0)
 
 
-def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None = None) -> PreparedFrame:
+def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None = None, region=None) -> PreparedFrame:
     """Validate ``frame`` and compute its Tan-Triggs gray plane and color plane.
 
     Parameters
@@ -80,6 +127,10 @@ def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None 
         color view's gray fallback. The tracker decides once, on its first
         frame, and passes the answer for every later frame so that the color
         view keeps one dimension through the sequence.
+    region : optional ``(x0, y0, x1, y1)`` int, the pixels ``[y0:y1, x0:x1]``
+        over which Tan-Triggs takes its contrast statistics (a crop of a
+        frame, normalized like the region of the frame it will be read in);
+        None: the whole frame.
     """
     f = to_unit_range(frame, where)
     if channels is None:
@@ -92,9 +143,53 @@ def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None 
         color = gray[:, :, None]
     else:
         color = f if f.ndim == 3 else np.repeat(f[:, :, None], 3, axis=2)
+    stats = None
+    if region is not None:
+        x0, y0, x1, y1 = (int(v) for v in region)
+        if not (0 <= x0 < x1 <= f.shape[1] and 0 <= y0 < y1 <= f.shape[0]):
+            raise ValueError(f"{where}: region {(x0, y0, x1, y1)} is not inside the {f.shape[1]}x{f.shape[0]} frame")
+        stats = (slice(y0, y1), slice(x0, x1))
     return PreparedFrame(
-        normalized=tan_triggs(gray), color=np.ascontiguousarray(color), gray=np.ascontiguousarray(gray)
+        normalized=tan_triggs(gray, region=stats), color=np.ascontiguousarray(color), gray=np.ascontiguousarray(gray)
     )
+
+
+def prepare_crop(frame: np.ndarray, where: str, channels: int, window, scale, plane_shape) -> PreparedFrame:
+    """The planes of :func:`prepare_frame` on a window of the whole plane only.
+
+    The whole plane is ``frame`` resized by ``scale = (sx, sy)`` plane pixels
+    per frame pixel (pixel edges to pixel edges), of shape ``plane_shape (H,
+    W)``; ``window (x0, y0, x1, y1)`` int are the plane pixels that will be read
+    (:func:`plane_window`). Only the frame pixels under the window, plus a
+    margin for Tan-Triggs' filters (:data:`~smtmvt.features.tan_triggs.TAN_TRIGGS_REACH`)
+    and the interpolation, are converted and resized by exactly ``scale``;
+    Tan-Triggs takes its contrast statistics over the window (the target's
+    surroundings instead of the whole frame). The result holds the crop, with
+    its ``origin`` in the whole plane and ``full_shape = plane_shape``; inside
+    the window its gray and color planes equal the whole plane's up to the
+    resize's rounding (exactly, at scale 1).
+    """
+    a = _checked_image(frame, where)
+    H, W = a.shape[:2]
+    sx, sy = float(scale[0]), float(scale[1])
+    x0, y0, x1, y1 = (int(v) for v in window)
+    r = TAN_TRIGGS_REACH + 2  # plane pixels: the filters' reach, and the resize's
+    ix0, iy0 = max(math.floor((x0 - r) / sx), 0), max(math.floor((y0 - r) / sy), 0)
+    ix1, iy1 = min(math.ceil((x1 + r) / sx), W), min(math.ceil((y1 + r) / sy), H)
+    f = to_unit_range(a, where, crop=(ix0, iy0, ix1, iy1))
+    if (sx, sy) != (1.0, 1.0):
+        shrink = sx * sy < 1.0
+        f = cv2.resize(f, None, fx=sx, fy=sy, interpolation=cv2.INTER_AREA if shrink else cv2.INTER_LINEAR)
+    ox, oy = ix0 * sx, iy0 * sy  # the crop's pixel (0, 0) in the whole plane (pixel centres)
+    h, w = f.shape[:2]
+    region = (
+        min(max(int(math.floor(x0 - ox)), 0), w - 1),
+        min(max(int(math.floor(y0 - oy)), 0), h - 1),
+        max(min(int(math.ceil(x1 - ox)), w), 1),
+        max(min(int(math.ceil(y1 - oy)), h), 1),
+    )
+    prepared = prepare_frame(f, where, channels, region)
+    return replace(prepared, origin=(ox, oy), full_shape=(int(plane_shape[0]), int(plane_shape[1])))
 
 
 def resize_frame(frame: np.ndarray, size) -> np.ndarray:
@@ -152,6 +247,20 @@ def sample_window(extent, shape) -> tuple[int, int, int, int]:
     x0, x1 = axis(ex0, ex1, W)
     y0, y1 = axis(ey0, ey1, H)
     return x0, y0, x1, y1
+
+
+def plane_window(extent, shape, reach: int = 0) -> tuple[int, int, int, int]:
+    """The pixels of a plane that sampling inside ``extent`` after smoothing reads.
+
+    :func:`sample_window` of ``extent (x0, y0, x1, y1)`` (plane coordinates)
+    grown by ``reach`` pixels on each side (:func:`smooth_reach` of the largest
+    smoothing, plus one as :func:`smooth` itself), within the plane of
+    ``shape (H, W)``: the ``window`` of :func:`prepare_frame` for those samples.
+    """
+    H, W = int(shape[0]), int(shape[1])
+    x0, y0, x1, y1 = sample_window(extent, shape)
+    r = int(reach)
+    return max(x0 - r, 0), max(y0 - r, 0), min(x1 + r, W), min(y1 + r, H)
 
 
 _ALIGN = 32  # columns; a multiple of every SIMD width of float32 rows (AVX-512: 16)

@@ -38,7 +38,17 @@ from .features import Patches, extract_views, intensity_template_size
 from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine
 from .likelihood import Observation, observe
 from .motion import propagate, pull_shape, resample
-from .preprocess import PreparedFrame, prepare_frame, resize_frame, sample_window, smooth, to_unit_range
+from .preprocess import (
+    PreparedFrame,
+    plane_window,
+    prepare_crop,
+    prepare_frame,
+    resize_frame,
+    sample_window,
+    smooth,
+    smooth_reach,
+    to_unit_range,
+)
 from .solvers import BOUNDED_CODING, SOLVERS, solve_smtmvt
 from .solvers.bounds import range_basis
 from .templates import TemplateSet
@@ -164,25 +174,20 @@ class Tracker:
         """
         cfg = self.config
         fs = cfg.feature_size
-        w, h = self._work_box[2] * plane_scale, self._work_box[3] * plane_scale
-        step_i = max(w / self._intensity_size[1], h / self._intensity_size[0])
-        step_f = max(w / fs[1], h / fs[0])
         cs = cfg.color_size or fs
-        step_c = max(w / cs[1], h / cs[0])
+
+        ox, oy = frame.origin
 
         def grid(size):
-            return sampling_grid(params, size, plane_scale)
+            return sampling_grid(params, size, plane_scale, frame.origin)
 
         with self._timed("warp"):
             # every plane is smoothed only where the samples read it
-            x0, y0, x1, y1 = affine_extent(params)
-            if plane_scale != 1.0:
-                x0, y0, x1, y1 = ((v + 0.5) * plane_scale - 0.5 for v in (x0, y0, x1, y1))
-            win = sample_window((x0, y0, x1, y1), frame.shape)
-            sig_i, sig_f = cfg.antialias * step_i, cfg.antialias * step_f
+            x0, y0, x1, y1 = self._plane_extent(params, plane_scale)
+            win = sample_window((x0 - ox, y0 - oy, x1 - ox, y1 - oy), frame.shape)
+            sig_i, sig_f, sig_c = self._smoothing(plane_scale)
             X, Y = grid(fs)
             XC, YC = (X, Y) if cs == fs else grid(cs)
-            sig_c = cfg.antialias * step_c
             patches = Patches(
                 intensity=remap_patches(smooth(frame.normalized, sig_i, win), *grid(self._intensity_size)),
                 gray=remap_patches(smooth(frame.normalized, sig_f, win), X, Y) if self._needs_gray else None,
@@ -190,6 +195,29 @@ class Tracker:
                 raw=remap_patches(smooth(frame.gray, sig_f, win), X, Y) if self._needs_raw else None,
             )
         return patches
+
+    def _smoothing(self, plane_scale: float) -> tuple[float, float, float]:
+        """Anti-aliasing sigmas (plane pixels) of the intensity, feature-size and
+        color patches: ``config.antialias`` times the current target's sampling step."""
+        cfg = self.config
+        fs = cfg.feature_size
+        cs = cfg.color_size or fs
+        w, h = self._work_box[2] * plane_scale, self._work_box[3] * plane_scale
+        steps = (
+            max(w / self._intensity_size[1], h / self._intensity_size[0]),
+            max(w / fs[1], h / fs[0]),
+            max(w / cs[1], h / cs[0]),
+        )
+        sig_i, sig_f, sig_c = (cfg.antialias * step for step in steps)
+        return sig_i, sig_f, sig_c
+
+    @staticmethod
+    def _plane_extent(params: np.ndarray, plane_scale: float) -> tuple:
+        """Bounding box ``(x0, y0, x1, y1)`` of the states' squares on the plane."""
+        x0, y0, x1, y1 = affine_extent(params)
+        if plane_scale != 1.0:
+            x0, y0, x1, y1 = ((v + 0.5) * plane_scale - 0.5 for v in (x0, y0, x1, y1))
+        return x0, y0, x1, y1
 
     def _background_views(self, frame: PreparedFrame, plane_scale: float = 1.0) -> list | None:
         """The background term's dictionary (:mod:`smtmvt.background`): the term
@@ -323,16 +351,35 @@ class Tracker:
         self._initialized = True
 
     # -- the working frame (config.frame_size) ------------------------------
-    def _prepare(self, frame, where: str, channels, plane_scale: float = 1.0):
-        """The frame's planes at ``plane_scale`` times the working frame's size."""
-        size = self.config.frame_size
-        if size is not None or plane_scale != 1.0:
-            f = to_unit_range(frame, where)
-            if size is None:
-                size = (f.shape[1], f.shape[0])
-            size = (max(2, int(round(size[0] * plane_scale))), max(2, int(round(size[1] * plane_scale))))
-            frame = resize_frame(f, size)
+    def _prepare(self, frame, where: str, channels, plane_scale: float = 1.0, states=None):
+        """The frame's planes at ``plane_scale`` times the working frame's size.
+
+        With ``states`` (m, 6) and ``config.crop_planes``, only the window of
+        them that those states' patches read (:func:`prepare_crop`).
+        """
+        cfg = self.config
+        if states is not None and cfg.crop_planes and not cfg.background_weight:
+            shape = np.shape(frame)
+            full = self._plane_size(shape, plane_scale) or (shape[1], shape[0])
+            plane_shape = (full[1], full[0])
+            reach = smooth_reach(max(self._smoothing(plane_scale))) + 1
+            window = plane_window(self._plane_extent(states, plane_scale), plane_shape, reach)
+            scale = (self._scale[0] * plane_scale, self._scale[1] * plane_scale)
+            return prepare_crop(frame, where, channels, window, scale, plane_shape)
+        size = self._plane_size(np.shape(frame), plane_scale)
+        if size is not None:
+            frame = resize_frame(to_unit_range(frame, where), size)
         return prepare_frame(frame, where, channels)
+
+    def _plane_size(self, shape, plane_scale: float) -> tuple[int, int] | None:
+        """``(width, height)`` of the planes for an input frame of ``shape``, or None
+        when they are the input frame's own."""
+        size = self.config.frame_size
+        if size is None and plane_scale == 1.0:
+            return None
+        if size is None:
+            size = (shape[1], shape[0])
+        return max(2, int(round(size[0] * plane_scale))), max(2, int(round(size[1] * plane_scale)))
 
     def _plane_scale(self) -> float:
         """Plane pixels per working pixel for the next frame (``config.scale_normalize``)."""
@@ -366,11 +413,8 @@ class Tracker:
             raise RuntimeError("update called before init")
         cfg = self.config
         self._frame_index += 1
-        with self._timed("preprocess"):
-            plane_scale = self._plane_scale()
-            prepared = self._prepare(frame, f"frame {self._frame_index}", self._channels, plane_scale)
-            work_shape = (int(round(prepared.shape[0] / plane_scale)), int(round(prepared.shape[1] / plane_scale)))
-
+        rng_state = self._rng.bit_generator.state
+        plane_scale = self._plane_scale()
         with self._timed("motion"):
             particles = resample(self._particles, self._weights, cfg.n_particles)
             if cfg.shape_pull:
@@ -384,6 +428,16 @@ class Tracker:
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
+        with self._timed("preprocess"):
+            try:
+                prepared = self._prepare(frame, f"frame {self._frame_index}", self._channels, plane_scale, states)
+            except Exception:
+                # a frame that cannot be read leaves the tracker as it was
+                self._rng.bit_generator.state = rng_state
+                self._frame_index -= 1
+                raise
+            full = prepared.plane_shape
+            work_shape = (int(round(full[0] / plane_scale)), int(round(full[1] / plane_scale)))
         patches = self._patches(prepared, states, plane_scale)
         # views computed for every candidate, and the views deferred (likelihood.observe)
         now, later = cfg.views[: self._n_first], cfg.views[self._n_first :]

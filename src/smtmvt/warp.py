@@ -20,8 +20,9 @@ __all__ = ["sampling_grid", "remap_patches", "warp_patches", "inside_fraction"]
 
 
 @njit(cache=True, nogil=True)
-def _grid_kernel(params, u, v, scale, X, Y):  # pragma: no cover - compiled (tested through sampling_grid)
+def _grid_kernel(params, u, v, scale, ox, oy, X, Y):  # pragma: no cover - compiled (tested through sampling_grid)
     half = np.float32(0.5)
+    shifted = ox != np.float32(0.0) or oy != np.float32(0.0)
     for k in range(params.shape[0]):
         a11, a12, a21, a22, tx, ty = params[k]
         for i in range(v.shape[0]):
@@ -32,12 +33,15 @@ def _grid_kernel(params, u, v, scale, X, Y):  # pragma: no cover - compiled (tes
                 if scale != np.float32(1.0):  # float32, as the array expression (X + 0.5) * s - 0.5
                     x = (x + half) * scale - half
                     y = (y + half) * scale - half
+                if shifted:  # float32, on a crop of the plane
+                    x = x - ox
+                    y = y - oy
                 X[k, i, j] = x
                 Y[k, i, j] = y
     return X, Y
 
 
-def sampling_grid(params, size, plane_scale: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+def sampling_grid(params, size, plane_scale: float = 1.0, origin=(0.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
     """Image coordinates sampled for each particle.
 
     Patch pixel ``(i, j)`` (row, column) of a ``(ph, pw)`` patch sits at template
@@ -51,6 +55,9 @@ def sampling_grid(params, size, plane_scale: float = 1.0) -> tuple[np.ndarray, n
     plane_scale : the coordinates on the image resized by this factor (pixel
         edges to pixel edges): ``(x + 0.5) s - 0.5``, in float32 after the
         rounding of ``x``.
+    origin : (x, y), the coordinates returned are relative to this point of
+        the plane (a crop of it whose pixel (0, 0) sits there: see
+        :class:`smtmvt.preprocess.PreparedFrame`), subtracted in float32.
 
     Returns
     -------
@@ -64,7 +71,8 @@ def sampling_grid(params, size, plane_scale: float = 1.0) -> tuple[np.ndarray, n
     v = ((np.arange(ph) + 0.5) / ph - 0.5) * REF
     X = np.empty((len(p), ph, pw), dtype=np.float32)
     Y = np.empty((len(p), ph, pw), dtype=np.float32)
-    return _grid_kernel(p, u, v, np.float32(plane_scale), X, Y)
+    ox, oy = (np.float32(o) for o in origin)
+    return _grid_kernel(p, u, v, np.float32(plane_scale), ox, oy, X, Y)
 
 
 def remap_patches(image: np.ndarray, X: np.ndarray, Y: np.ndarray) -> np.ndarray:

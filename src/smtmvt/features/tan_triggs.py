@@ -40,9 +40,18 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
-__all__ = ["tan_triggs", "difference_of_gaussians", "to_unit_float"]
+__all__ = ["tan_triggs", "difference_of_gaussians", "to_unit_float", "TAN_TRIGGS_REACH"]
 
 _TRUNCATE = 4.0  # scipy.ndimage.gaussian_filter's default kernel truncation
+
+
+def _gaussian_radius(sigma: float) -> int:
+    """Pixels the Gaussian of :func:`difference_of_gaussians` reads on each side."""
+    return int(_TRUNCATE * float(sigma) + 0.5)
+
+
+#: Pixels the default chain (outer sigma 2) reads on each side of a pixel.
+TAN_TRIGGS_REACH = _gaussian_radius(2.0)
 
 
 def to_unit_float(image: np.ndarray) -> np.ndarray:
@@ -76,7 +85,7 @@ def _gaussian(image: np.ndarray, sigma: float) -> np.ndarray:
     """Gaussian blur (float32 or float64) with scipy's kernel and 'reflect' border."""
     if sigma == 0:
         return image
-    radius = int(_TRUNCATE * float(sigma) + 0.5)
+    radius = _gaussian_radius(sigma)
     ksize = 2 * radius + 1
     return cv2.GaussianBlur(
         image,
@@ -120,9 +129,11 @@ def difference_of_gaussians(image: np.ndarray, sigma0: float = 1.0, sigma1: floa
     return _gaussian(centred, sigma0) - _gaussian(centred, sigma1)
 
 
-def _equalize(image: np.ndarray, alpha: float, tau: float | None) -> np.ndarray:
-    """One contrast-equalization stage; an all-zero image stays all zero."""
-    mag = np.abs(image)
+def _equalize(image: np.ndarray, alpha: float, tau: float | None, region=None) -> np.ndarray:
+    """One contrast-equalization stage, its statistic taken over ``image[region]``
+    (``region`` a pair of slices, or None: the whole image); an all-zero region
+    leaves the image all zero."""
+    mag = np.abs(image if region is None else image[region])
     if tau is not None:
         np.minimum(mag, tau, out=mag)
     scale = float(np.mean(np.power(mag, alpha, out=mag))) ** (1.0 / alpha)
@@ -138,8 +149,9 @@ def tan_triggs(
     sigma1: float = 2.0,
     alpha: float = 0.1,
     tau: float = 10.0,
+    region=None,
 ) -> np.ndarray:
-    """Tan-Triggs illumination normalization of a whole gray frame.
+    """Tan-Triggs illumination normalization of a whole gray frame, or of a region of it.
 
     Parameters
     ----------
@@ -153,6 +165,13 @@ def tan_triggs(
         Exponent of the robust contrast-equalization means (0.1).
     tau : float
         Saturation level (10); the output lies in [-tau, tau].
+    region : optional ``(slice, slice)`` (rows, columns) of ``image``: the
+        contrast equalization takes its two means over these pixels only (a
+        crop around the target then normalizes as if it were the frame).
+        None: over the whole image. A crop should reach
+        :data:`TAN_TRIGGS_REACH` pixels beyond the region on every side that
+        is not the frame's border, so that the region's difference of
+        Gaussians equals the frame's.
 
     Returns
     -------
@@ -167,8 +186,8 @@ def tan_triggs(
     img = to_unit_float(image)
     img = np.power(img, gamma, out=img)
     img = difference_of_gaussians(img, sigma0, sigma1)
-    img = _equalize(img, alpha, None)
-    img = _equalize(img, alpha, tau)
+    img = _equalize(img, alpha, None, region)
+    img = _equalize(img, alpha, tau, region)
     out = np.tanh(img / tau, out=img)
     out *= tau
     # |tanh| <= 1 and rounding to float32 is monotone, so the result stays in [-tau, tau].
