@@ -50,14 +50,15 @@ def test_tan_triggs_statistics_over_a_region(frame):
     assert ratio < 0.9
 
 
-def test_crop_at_scale_one_holds_the_whole_planes_inside_the_window(frame):
+@pytest.mark.parametrize("stats", [None, (20, 10, 200, 150)])
+def test_crop_at_scale_one_holds_the_whole_planes_inside_the_window(frame, stats):
     states = _states()
     window = plane_window(
         (states[:, 4].min() - 30, states[:, 5].min() - 30, states[:, 4].max() + 30, states[:, 5].max() + 30),
         frame.shape[:2],
         3,
     )
-    crop = prepare_crop(frame, "f", 3, window, (1.0, 1.0), frame.shape[:2])
+    crop = prepare_crop(frame, "f", 3, window, (1.0, 1.0), frame.shape[:2], stats)
     whole = prepare_frame(frame, "f", 3)
     x0, y0, x1, y1 = window
     ox, oy = crop.origin
@@ -65,8 +66,11 @@ def test_crop_at_scale_one_holds_the_whole_planes_inside_the_window(frame):
     local = (slice(y0 - int(oy), y1 - int(oy)), slice(x0 - int(ox), x1 - int(ox)))
     np.testing.assert_array_equal(crop.gray[local], whole.gray[y0:y1, x0:x1])
     np.testing.assert_array_equal(crop.color[local], whole.color[y0:y1, x0:x1])
-    # Tan-Triggs: the frame's band-pass there, normalized by the window's statistics
-    expected = tan_triggs(whole.gray, region=(slice(y0, y1), slice(x0, x1)))[y0:y1, x0:x1]
+    # Tan-Triggs: the frame's band-pass there, normalized by the statistics of the window
+    # (or of the region given), which the crop then also holds
+    sx0, sy0, sx1, sy1 = window if stats is None else stats
+    assert ox <= sx0 and oy <= sy0 and sx1 <= ox + crop.shape[1] and sy1 <= oy + crop.shape[0]
+    expected = tan_triggs(whole.gray, region=(slice(sy0, sy1), slice(sx0, sx1)))[y0:y1, x0:x1]
     np.testing.assert_allclose(crop.normalized[local], expected, atol=2e-5)
 
 

@@ -352,11 +352,15 @@ class TrackerConfig:
     crop_planes : bool
         Compute each frame's planes (gray, color, Tan-Triggs) only where the
         frame's candidates read them (the particles' extent grown by the
-        smoothing's reach, :func:`smtmvt.preprocess.plane_window`); Tan-Triggs'
-        contrast equalization then takes its statistics over that region
-        instead of the whole frame. The cost of a frame then follows the
-        search region, not the frame size. False: whole frames (the paper).
-        Forced off while ``background_weight`` > 0 (the ring reads farther).
+        smoothing's reach, :func:`smtmvt.preprocess.plane_window`), in the
+        first frame as in every other; Tan-Triggs' contrast equalization then
+        takes its statistics over the current box grown ``crop_context``
+        times about its centre instead of the whole frame. The cost of a
+        frame then follows the search region, not the frame size. False:
+        whole frames (the paper). Forced off while ``background_weight`` > 0
+        (the ring reads farther).
+    crop_context : float >= 1
+        See ``crop_planes``.
     antialias : float
         Smooth each plane before sampling it on the patch grids, by a Gaussian
         of ``antialias`` times the sampling step (target size over patch size,
@@ -439,6 +443,7 @@ class TrackerConfig:
     frame_size: tuple | None = None
     scale_normalize: bool = True
     crop_planes: bool = False
+    crop_context: float = 3.0
     antialias: float = 1.0
     hog_plane: str = "gray"
     lbp_plane: str = "gray"
@@ -484,6 +489,7 @@ class TrackerConfig:
             "narrow_fraction": 0 <= self.narrow_fraction <= 1,
             "narrow_scale": self.narrow_scale > 0,
             "translation_power": 0 <= self.translation_power <= 1,
+            "crop_context": self.crop_context >= 1,
             "aspect_std": self.aspect_std is None or self.aspect_std >= 0,
         }
         for name, ok in checks.items():
@@ -563,6 +569,7 @@ class TrackerConfig:
             frame_size=(320, 240),
             scale_normalize=False,
             crop_planes=False,
+            crop_context=3.0,
             antialias=0.0,
             hog_plane="tan_triggs",
             lbp_plane="tan_triggs",

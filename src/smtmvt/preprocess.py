@@ -4,7 +4,9 @@ A frame is ``(H, W)`` (grayscale) or ``(H, W, 3)`` (RGB; a 4th alpha channel is
 dropped), of dtype ``uint8``, ``uint16`` or float. Floats are taken as values in
 ``[0, 1]`` when their maximum is at most 1 and as ``[0, 255]`` otherwise. The
 Tan-Triggs normalization (:func:`smtmvt.features.tan_triggs`) runs once here on
-the whole gray frame, before any candidate is cropped.
+the whole gray frame (:func:`prepare_frame`, the paper), or on the window of it
+that the frame's candidates read (:func:`prepare_crop`), before any candidate
+is cropped.
 """
 
 from __future__ import annotations
@@ -154,25 +156,27 @@ def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None 
     )
 
 
-def prepare_crop(frame: np.ndarray, where: str, channels: int, window, scale, plane_shape) -> PreparedFrame:
+def prepare_crop(frame: np.ndarray, where: str, channels: int, window, scale, plane_shape, stats=None) -> PreparedFrame:
     """The planes of :func:`prepare_frame` on a window of the whole plane only.
 
     The whole plane is ``frame`` resized by ``scale = (sx, sy)`` plane pixels
     per frame pixel (pixel edges to pixel edges), of shape ``plane_shape (H,
     W)``; ``window (x0, y0, x1, y1)`` int are the plane pixels that will be read
-    (:func:`plane_window`). Only the frame pixels under the window, plus a
-    margin for Tan-Triggs' filters (:data:`~smtmvt.features.tan_triggs.TAN_TRIGGS_REACH`)
-    and the interpolation, are converted and resized by exactly ``scale``;
-    Tan-Triggs takes its contrast statistics over the window (the target's
-    surroundings instead of the whole frame). The result holds the crop, with
-    its ``origin`` in the whole plane and ``full_shape = plane_shape``; inside
-    the window its gray and color planes equal the whole plane's up to the
-    resize's rounding (exactly, at scale 1).
+    (:func:`plane_window`), ``stats`` (the same form; None: ``window``) those
+    Tan-Triggs takes its contrast statistics over. Only the frame pixels under
+    both, plus a margin for Tan-Triggs' filters
+    (:data:`~smtmvt.features.tan_triggs.TAN_TRIGGS_REACH`) and the
+    interpolation, are converted and resized by exactly ``scale``. The result
+    holds the crop, with its ``origin`` in the whole plane and ``full_shape =
+    plane_shape``; inside the window its gray and color planes equal the whole
+    plane's up to the resize's rounding (exactly, at scale 1).
     """
     a = _checked_image(frame, where)
     H, W = a.shape[:2]
     sx, sy = float(scale[0]), float(scale[1])
-    x0, y0, x1, y1 = (int(v) for v in window)
+    stats = window if stats is None else stats
+    x0, y0 = min(int(window[0]), int(stats[0])), min(int(window[1]), int(stats[1]))
+    x1, y1 = max(int(window[2]), int(stats[2])), max(int(window[3]), int(stats[3]))
     r = TAN_TRIGGS_REACH + 2  # plane pixels: the filters' reach, and the resize's
     ix0, iy0 = max(math.floor((x0 - r) / sx), 0), max(math.floor((y0 - r) / sy), 0)
     ix1, iy1 = min(math.ceil((x1 + r) / sx), W), min(math.ceil((y1 + r) / sy), H)
@@ -182,11 +186,12 @@ def prepare_crop(frame: np.ndarray, where: str, channels: int, window, scale, pl
         f = cv2.resize(f, None, fx=sx, fy=sy, interpolation=cv2.INTER_AREA if shrink else cv2.INTER_LINEAR)
     ox, oy = ix0 * sx, iy0 * sy  # the crop's pixel (0, 0) in the whole plane (pixel centres)
     h, w = f.shape[:2]
+    sx0, sy0, sx1, sy1 = (int(v) for v in stats)
     region = (
-        min(max(int(math.floor(x0 - ox)), 0), w - 1),
-        min(max(int(math.floor(y0 - oy)), 0), h - 1),
-        max(min(int(math.ceil(x1 - ox)), w), 1),
-        max(min(int(math.ceil(y1 - oy)), h), 1),
+        min(max(int(math.floor(sx0 - ox)), 0), w - 1),
+        min(max(int(math.floor(sy0 - oy)), 0), h - 1),
+        max(min(int(math.ceil(sx1 - ox)), w), 1),
+        max(min(int(math.ceil(sy1 - oy)), h), 1),
     )
     prepared = prepare_frame(f, where, channels, region)
     return replace(prepared, origin=(ox, oy), full_shape=(int(plane_shape[0]), int(plane_shape[1])))
@@ -255,7 +260,7 @@ def plane_window(extent, shape, reach: int = 0) -> tuple[int, int, int, int]:
     :func:`sample_window` of ``extent (x0, y0, x1, y1)`` (plane coordinates)
     grown by ``reach`` pixels on each side (:func:`smooth_reach` of the largest
     smoothing, plus one as :func:`smooth` itself), within the plane of
-    ``shape (H, W)``: the ``window`` of :func:`prepare_frame` for those samples.
+    ``shape (H, W)``: the ``window`` of :func:`prepare_crop` for those samples.
     """
     H, W = int(shape[0]), int(shape[1])
     x0, y0, x1, y1 = sample_window(extent, shape)

@@ -341,6 +341,8 @@ class Tracker:
         self._work_box = tuple(float(v) for v in wb)
         self._box = tuple(float(v) for v in b)
         t_states = self._template_states(self._state)
+        if cfg.crop_planes and not cfg.background_weight:  # the templates' planes as every later frame's
+            prepared = self._prepare(frame, "init frame", self._channels, 1.0, t_states)
         self._templates = TemplateSet([np.array(v, dtype=np.float32) for v in self._views(prepared, t_states)])
         self._bases: list | None = None  # range_basis of each weighted dictionary, kept until a template changes
         self._particles = np.repeat(self._state[None], cfg.n_particles, axis=0)
@@ -364,8 +366,12 @@ class Tracker:
             plane_shape = (full[1], full[0])
             reach = smooth_reach(max(self._smoothing(plane_scale))) + 1
             window = plane_window(self._plane_extent(states, plane_scale), plane_shape, reach)
+            # Tan-Triggs' statistics: the current box grown by crop_context about its centre
+            context = self._state.copy()
+            context[:4] *= cfg.crop_context
+            stats = plane_window(self._plane_extent(context[None], plane_scale), plane_shape)
             scale = (self._scale[0] * plane_scale, self._scale[1] * plane_scale)
-            return prepare_crop(frame, where, channels, window, scale, plane_shape)
+            return prepare_crop(frame, where, channels, window, scale, plane_shape, stats)
         size = self._plane_size(np.shape(frame), plane_scale)
         if size is not None:
             frame = resize_frame(to_unit_range(frame, where), size)
