@@ -124,3 +124,8 @@ def test_cropped_planes_give_the_whole_frames_views():
             assert cos.min() > 0.98 and not np.array_equal(whole, crop)
         else:
             np.testing.assert_array_equal(whole, crop, err_msg=name)
+
+
+def test_crop_context_below_one_is_rejected():
+    with pytest.raises(ValueError, match="crop_context"):
+        TrackerConfig(crop_planes=True, crop_context=0.5)
