@@ -95,15 +95,24 @@ def test_crop_of_a_resized_plane_samples_like_the_whole_resized_plane(frame, sca
     assert np.abs(ours - theirs).mean() < tol / 10
 
 
-def test_a_frame_that_cannot_be_read_leaves_the_tracker_unchanged():
+@pytest.mark.parametrize("crop", [False, True])
+@pytest.mark.parametrize(
+    "bad,match",
+    [
+        (np.full((120, 160, 3), np.nan, np.float32), "NaN"),
+        (np.zeros(50, np.uint8), "shape"),
+        (np.zeros((60, 80), np.int32), "dtype"),
+    ],
+)
+def test_a_frame_that_cannot_be_read_leaves_the_tracker_unchanged(crop, bad, match):
     demo = make_demo_sequence(n_frames=8)
-    config = TrackerConfig(n_particles=60, seed=2)
+    config = TrackerConfig(n_particles=60, seed=2, crop_planes=crop)
     a, b = Tracker(config), Tracker(config)
     for t in (a, b):
         t.init(demo.frames[0], demo.groundtruth[0])
         t.update(demo.frames[1])
-    with pytest.raises(ValueError, match="NaN"):
-        a.update(np.full(demo.frames[2].shape, np.nan, np.float32))
+    with pytest.raises(ValueError, match=match):
+        a.update(bad)
     ra, rb = a.update(demo.frames[2]), b.update(demo.frames[2])
     assert ra == rb
 

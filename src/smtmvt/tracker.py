@@ -360,6 +360,8 @@ class Tracker:
         them that those states' patches read (:func:`prepare_crop`).
         """
         cfg = self.config
+        if np.ndim(frame) < 2:
+            to_unit_range(frame, where)  # raises, naming the frame and its shape
         if states is not None and cfg.crop_planes and not cfg.background_weight:
             shape = np.shape(frame)
             full = self._plane_size(shape, plane_scale) or (shape[1], shape[0])
