@@ -41,6 +41,10 @@ def test_tracks_demo_sequence(demo):
     11 template replacements (frames 4, 12, 25, 51, 60, 66, 71, 75, 87, 95, 101);
     thresholds set below them with margin (0.05 and 5). A tracker whose
     template update never replaces a template fails the second assertion.
+    Seed 0 is one of the good outcomes: over seeds 0-7 the overlaps are 0.785,
+    0.471, 0.786, 0.495, 0.478, 0.728, 0.471, 0.766 (half the seeds lose the
+    target at the occlusion, near frame 78: the chosen box jumps to the
+    background beside it and the particles never reach the target again).
     """
     t = Tracker(TrackerConfig(seed=0))
     t.init(demo.frames[0], demo.groundtruth[0])
