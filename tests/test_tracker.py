@@ -295,3 +295,31 @@ def test_color_size_samples_the_color_view_at_its_own_size(demo):
     assert d16.shape == d32.shape and not np.allclose(d16, d32, atol=1e-3)
     with pytest.raises(ValueError, match="color_size"):
         TrackerConfig(color_size=(1, 16))
+
+
+def test_search_expand_follows_the_residual_over_its_median(demo):
+    t = Tracker(FAST.replace(search_expand=3.0))
+    t.init(demo.frames[0], demo.groundtruth[0])
+    factors = [t._search_expand(r) for r in (1.0, 1.0, 1.0, 2.5, 5.0, 0.5)]
+    # medians 1, 1, 1, 1, 1, 1: the factor is the residual's ratio to them, within [1, 3]
+    assert factors == [1.0, 1.0, 1.0, 2.5, 3.0, 1.0]
+    off = Tracker(FAST)
+    off.init(demo.frames[0], demo.groundtruth[0])
+    assert off._search_expand(10.0) == 1.0
+    with pytest.raises(ValueError, match="search_expand"):
+        TrackerConfig(search_expand=0.5)
+
+
+def test_search_expand_widens_the_translation_of_the_next_frames_particles(demo):
+    """The same draws with the factor 1, 2 and 3: the particles' translations move
+    by equal steps (base + k * noise), their shapes not at all."""
+    particles = []
+    for k in (1.0, 2.0, 3.0):
+        t = Tracker(FAST.replace(search_expand=3.0))
+        t.init(demo.frames[0], demo.groundtruth[0])
+        t._expand = k
+        particles.append(t.update_detailed(demo.frames[1])[1].particles)
+    p1, p2, p3 = particles
+    np.testing.assert_allclose(p3[:, 4:] - p2[:, 4:], p2[:, 4:] - p1[:, 4:], atol=1e-9)
+    assert np.abs(p2[:, 4:] - p1[:, 4:]).max() > 1.0
+    np.testing.assert_array_equal(p1[:, :4], p3[:, :4])

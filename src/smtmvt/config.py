@@ -275,6 +275,13 @@ class TrackerConfig:
         adjacent, so each keeps both hypotheses); the others follow the pure
         random walk. 1: all (a constant-velocity model), the default; 0.5
         measured in the table above (0.534 against 0.593).
+    search_expand : float >= 1
+        After a frame whose chosen candidate is explained worse than usual
+        (residual ``r`` above the median ``m`` of the residuals chosen so
+        far: the target occluded or lost), the next frame's translation std
+        is multiplied by ``clip(r / m, 1, search_expand)``, so that the
+        particles can reach a target that moved while the box stayed on the
+        background. 1: off (the paper), the default.
     shape_pull : float in [0, 1]
         Mean reversion of the particles' shape (aspect ratio and skew) toward
         the first frame's box (:func:`smtmvt.motion.pull_shape`), applied
@@ -458,6 +465,7 @@ class TrackerConfig:
     estimate: str = "best"
     velocity: float = 0.5
     velocity_fraction: float = 1.0
+    search_expand: float = 1.0
     shape_pull: float = 0.0
     background_weight: float = 0.0
     background_samples: int = 12
@@ -516,6 +524,7 @@ class TrackerConfig:
             "velocity": 0 <= self.velocity <= 1,
             "shape_pull": 0 <= self.shape_pull <= 1,
             "velocity_fraction": 0 <= self.velocity_fraction <= 1,
+            "search_expand": self.search_expand >= 1,
             "background_weight": self.background_weight >= 0,
             "background_samples": int(self.background_samples) >= 1,
             "background_measure": self.background_measure in ("nearest", "nnls"),
@@ -585,6 +594,7 @@ class TrackerConfig:
             estimate="best",
             velocity=0.0,
             velocity_fraction=1.0,
+            search_expand=1.0,
             shape_pull=0.0,
             background_weight=0.0,
             background_samples=12,

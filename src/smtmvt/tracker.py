@@ -329,6 +329,8 @@ class Tracker:
         self._state = box_to_affine(wb)
         self._init_state = self._state.copy()
         self._velocity = np.zeros(2)
+        self._residuals: list[float] = []  # the chosen candidates' residuals (config.search_expand)
+        self._expand = 1.0
         # velocity_fraction of the particles, evenly spread over the indices, take the velocity term
         i = np.arange(cfg.n_particles)
         moved = np.floor((i + 1) * cfg.velocity_fraction) > np.floor(i * cfg.velocity_fraction)
@@ -430,9 +432,10 @@ class Tracker:
             shift = cfg.velocity * self._velocity if cfg.velocity else None
             if shift is not None and self._velocity_share is not None:
                 shift = self._velocity_share * shift
-            particles = propagate(
-                particles, cfg.affine_std, self._rng, shift, self._spread, cfg.translation_power, cfg.aspect_std
-            )
+            std = cfg.affine_std
+            if self._expand > 1.0:  # config.search_expand: a wider search after a poorly explained frame
+                std = (*std[:4], std[4] * self._expand, std[5] * self._expand)
+            particles = propagate(particles, std, self._rng, shift, self._spread, cfg.translation_power, cfg.aspect_std)
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
@@ -520,6 +523,7 @@ class Tracker:
         else:
             state = particles[best].copy()
         self._velocity = state[4:] - self._state[4:]
+        self._expand = self._search_expand(float(obs.residual[best]))
         self._state = state
         self._work_box = tuple(float(v) for v in affine_to_box(self._state))
         self._box = tuple(float(v) for v in self._from_work(self._work_box))
@@ -534,6 +538,19 @@ class Tracker:
             frame_index=self._frame_index,
         )
         return result, FrameDetail(particles, obs, best, probe_boxes, self._scale, [Xk[:, best].copy() for Xk in X])
+
+    def _search_expand(self, residual: float) -> float:
+        """Factor on the next frame's translation std (``config.search_expand``):
+        the chosen residual over the median of the residuals chosen so far,
+        within ``[1, search_expand]``."""
+        cap = self.config.search_expand
+        if cap <= 1.0:
+            return 1.0
+        self._residuals.append(residual)
+        typical = float(np.median(self._residuals))
+        if not typical > 0:
+            return 1.0
+        return float(np.clip(residual / typical, 1.0, cap))
 
     def _prune_eps(self, n: int) -> float:
         """Bounded coding's ``eps`` for n particles: 0 (code all) for models it is not exact for."""
