@@ -75,13 +75,21 @@ def to_unit_range(frame: np.ndarray, where: str = "frame", crop=None) -> np.ndar
     """
     a = _checked_image(frame, where)
     if crop is not None:
-        x0, y0, x1, y1 = (int(v) for v in crop)
-        if not (0 <= x0 < x1 <= a.shape[1] and 0 <= y0 < y1 <= a.shape[0]):
-            raise ValueError(f"{where}: crop {(x0, y0, x1, y1)} is not inside the {a.shape[1]}x{a.shape[0]} image")
+        x0, y0, x1, y1 = _inside(crop, a.shape, f"{where}: crop", "image")
         if a.dtype in (np.uint8, np.uint16):
             return _unit_float(a[y0:y1, x0:x1], where)
         return _unit_float(a, where)[y0:y1, x0:x1]
     return _unit_float(a, where)
+
+
+def _inside(window, shape, what: str, of: str) -> tuple[int, int, int, int]:
+    """``window (x0, y0, x1, y1)`` as ints, checked to be a non-empty part of
+    an array of ``shape (H, W, ...)``; the error names ``what`` and ``of``."""
+    x0, y0, x1, y1 = (int(v) for v in window)
+    H, W = int(shape[0]), int(shape[1])
+    if not (0 <= x0 < x1 <= W and 0 <= y0 < y1 <= H):
+        raise ValueError(f"{what} {(x0, y0, x1, y1)} is not inside the {W}x{H} {of}")
+    return x0, y0, x1, y1
 
 
 def _checked_image(frame, where: str) -> np.ndarray:
@@ -147,9 +155,7 @@ def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None 
         color = f if f.ndim == 3 else np.repeat(f[:, :, None], 3, axis=2)
     stats = None
     if region is not None:
-        x0, y0, x1, y1 = (int(v) for v in region)
-        if not (0 <= x0 < x1 <= f.shape[1] and 0 <= y0 < y1 <= f.shape[0]):
-            raise ValueError(f"{where}: region {(x0, y0, x1, y1)} is not inside the {f.shape[1]}x{f.shape[0]} frame")
+        x0, y0, x1, y1 = _inside(region, f.shape, f"{where}: region", "frame")
         stats = (slice(y0, y1), slice(x0, x1))
     return PreparedFrame(
         normalized=tan_triggs(gray, region=stats), color=np.ascontiguousarray(color), gray=np.ascontiguousarray(gray)
@@ -288,9 +294,7 @@ def smooth(plane: np.ndarray, sigma: float, window=None) -> np.ndarray:
     if window is None:
         return cv2.GaussianBlur(plane, (0, 0), float(sigma), borderType=cv2.BORDER_REFLECT).reshape(plane.shape)
     H, W = plane.shape[:2]
-    x0, y0, x1, y1 = (int(v) for v in window)
-    if not (0 <= x0 < x1 <= W and 0 <= y0 < y1 <= H):
-        raise ValueError(f"smooth: window {(x0, y0, x1, y1)} is not inside the {W}x{H} plane")
+    x0, y0, x1, y1 = _inside(window, plane.shape, "smooth: window", "plane")
     r = smooth_reach(sigma) + 1  # one more than the kernel's radius: safe from its rounding
     # The crop's columns start and end on multiples of _ALIGN (or at the plane's edges), so
     # that OpenCV's vectorized row filter treats each pixel as in the whole plane (a

@@ -293,6 +293,8 @@ class Tracker:
         if b[2] <= 0 or b[3] <= 0:
             raise ValueError(f"init: box {tuple(b)} has zero or negative size")
         cfg = self.config
+        # planes computed on the candidates' window only (the background ring reads farther)
+        self._crop = bool(cfg.crop_planes and not cfg.background_weight)
         shape = np.shape(frame)
         if cfg.frame_size is None or len(shape) < 2:
             self._scale = np.ones(2)
@@ -343,7 +345,7 @@ class Tracker:
         self._work_box = tuple(float(v) for v in wb)
         self._box = tuple(float(v) for v in b)
         t_states = self._template_states(self._state)
-        if cfg.crop_planes and not cfg.background_weight:  # the templates' planes as every later frame's
+        if self._crop:  # the templates' planes as every later frame's
             prepared = self._prepare(frame, "init frame", self._channels, 1.0, t_states)
         self._templates = TemplateSet([np.array(v, dtype=np.float32) for v in self._views(prepared, t_states)])
         self._bases: list | None = None  # range_basis of each weighted dictionary, kept until a template changes
@@ -364,10 +366,10 @@ class Tracker:
         cfg = self.config
         if np.ndim(frame) < 2:
             to_unit_range(frame, where)  # raises, naming the frame and its shape
-        if states is not None and cfg.crop_planes and not cfg.background_weight:
-            shape = np.shape(frame)
-            full = self._plane_size(shape, plane_scale) or (shape[1], shape[0])
-            plane_shape = (full[1], full[0])
+        shape = np.shape(frame)
+        size = self._plane_size(shape, plane_scale)
+        if states is not None and self._crop:
+            plane_shape = (shape[0], shape[1]) if size is None else (size[1], size[0])
             reach = smooth_reach(max(self._smoothing(plane_scale))) + 1
             window = plane_window(self._plane_extent(states, plane_scale), plane_shape, reach)
             # Tan-Triggs' statistics: the current box grown by crop_context about its centre
@@ -376,7 +378,6 @@ class Tracker:
             stats = plane_window(self._plane_extent(context[None], plane_scale), plane_shape)
             scale = (self._scale[0] * plane_scale, self._scale[1] * plane_scale)
             return prepare_crop(frame, where, channels, window, scale, plane_shape, stats)
-        size = self._plane_size(np.shape(frame), plane_scale)
         if size is not None:
             frame = resize_frame(to_unit_range(frame, where), size)
         return prepare_frame(frame, where, channels)
