@@ -1,0 +1,180 @@
+"""Accuracy sweep: one configuration over many sequences and seeds, resumable.
+
+Usage::
+
+    python bench/sweep.py run --tag T [--config JSON] [--seeds 3] [--workers 2]
+                          [--data DIR ...] [--out RUNS] [--sequences A,B]
+    python bench/sweep.py show TAG [TAG ...] [--out RUNS] [--seeds K]
+
+``run`` tracks every sequence of every ``--data`` folder (default
+``../shared/data/otb`` and ``/work/extra``, the 18 sequences the accuracy issue
+judges on) with ``TrackerConfig(**config)``, once per seed index ``k`` in
+``0..seeds-1``. Seed ``k`` is the one ``smtmvt evaluate --repeat`` gives repeat
+``k`` (:func:`smtmvt.evaluation.pairs.sequence_seed`), and the score is the
+evaluation's (:func:`smtmvt.evaluation.metrics.score_sequence`), so a sweep's
+figures equal an evaluate run's. Each (sequence, seed) writes
+``RUNS/TAG/<seq>#<k>.json`` (average overlap, AUC, fps, boxes) once it is
+done; a run started again skips finished ones, and a larger ``--seeds`` adds
+seeds. ``run.json`` keeps the configuration: another one under the same tag is
+refused. Runs the source tree the interpreter imports ``smtmvt`` from: to
+compare against older code, run with ``PYTHONPATH=<copy of src>``.
+
+``show`` prints per-sequence means over the seeds for each tag side by side,
+the mean per seed index, and the means over all sequences and per data folder.
+Not a test: it measures.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+DEFAULT_DATA = [str(ROOT / ".." / "shared" / "data" / "otb"), "/work/extra"]
+DEFAULT_OUT = "/work/runs"
+
+
+def _sequences(data: list[str], only: set[str] | None) -> list[tuple[str, str, str]]:
+    """(folder label, sequence name, path) of every OTB sequence folder under ``data``."""
+    out = []
+    for d in data:
+        root = Path(d)
+        if not root.is_dir():
+            sys.exit(f"sweep: data folder {root} does not exist")
+        for p in sorted(root.iterdir()):
+            if (p / "groundtruth_rect.txt").is_file() and (only is None or p.name in only):
+                out.append((root.name, p.name, str(p)))
+    return out
+
+
+def _job(path: str, config: dict, k: int) -> dict:
+    """Track one sequence with seed index ``k``; returns the record written to disk."""
+    os.environ.setdefault("OMP_NUM_THREADS", "1")
+    import numpy as np
+
+    from smtmvt import Tracker, TrackerConfig, open_sequence
+    from smtmvt.evaluation.metrics import score_sequence
+    from smtmvt.evaluation.pairs import sequence_seed
+
+    seq = open_sequence(path)
+    seed = sequence_seed(seq.name, 0, k)
+    tracker = Tracker(TrackerConfig(**config, seed=seed))
+    boxes = np.empty((len(seq), 4))
+    t0 = time.perf_counter()
+    tracker.init(seq[0], seq.first_box)
+    boxes[0] = seq.first_box
+    for i in range(1, len(seq)):
+        boxes[i] = tracker.update(seq[i]).box
+    wall = time.perf_counter() - t0
+    score = score_sequence(boxes, np.asarray(seq.groundtruth))
+    return {
+        "sequence": seq.name,
+        "k": k,
+        "seed": seed,
+        "avg_overlap": score.avg_overlap,
+        "auc": score.auc,
+        "fps": (len(seq) - 1) / wall,
+        "boxes": boxes.round(4).tolist(),
+    }
+
+
+def run(args) -> None:
+    config = json.loads(args.config)
+    tag_dir = Path(args.out) / args.tag
+    tag_dir.mkdir(parents=True, exist_ok=True)
+    meta = tag_dir / "run.json"
+    if meta.exists() and json.loads(meta.read_text())["config"] != config:
+        sys.exit(f"sweep: {tag_dir} was run with another configuration: {meta.read_text()}")
+    meta.write_text(json.dumps({"config": config, "data": args.data}, indent=1))
+    only = set(args.sequences.split(",")) if args.sequences else None
+    jobs = [
+        (label, name, path, k)
+        for k in range(args.seeds)
+        for label, name, path in _sequences(args.data, only)
+        if not (tag_dir / f"{name}#{k}.json").exists()
+    ]
+    # the longest sequences first, so that the pool's tail is short
+    jobs.sort(key=lambda j: -len(os.listdir(Path(j[2]) / "img")))
+    print(f"{args.tag}: {len(jobs)} runs to do", flush=True)
+    with ProcessPoolExecutor(args.workers) as pool:
+        futures = {pool.submit(_job, path, config, k): (label, name, k) for label, name, path, k in jobs}
+        for fut in as_completed(futures):
+            label, name, k = futures[fut]
+            rec = fut.result()
+            rec["folder"] = label
+            tmp = tag_dir / f".{name}#{k}.json.tmp"
+            tmp.write_text(json.dumps(rec))
+            tmp.replace(tag_dir / f"{name}#{k}.json")
+            print(f"  {name:<12} #{k}  {rec['avg_overlap']:.3f}  {rec['fps']:.1f} fps", flush=True)
+    show(argparse.Namespace(tags=[args.tag], out=args.out, seeds=args.seeds))
+
+
+def _load(tag_dir: Path, seeds: int | None) -> dict:
+    """{(sequence, k): record} of a tag's finished runs (seed indices below ``seeds``)."""
+    recs = {}
+    for f in tag_dir.glob("*#*.json"):
+        rec = json.loads(f.read_text())
+        if seeds is None or rec["k"] < seeds:
+            recs[(rec["sequence"], rec["k"])] = rec
+    return recs
+
+
+def _mean(values) -> float:
+    values = list(values)
+    return sum(values) / len(values) if values else float("nan")
+
+
+def show(args) -> None:
+    runs = {tag: _load(Path(args.out) / tag, args.seeds) for tag in args.tags}
+    seqs = sorted({s for recs in runs.values() for s, _ in recs}, key=str.lower)
+    folders = {rec["sequence"]: rec.get("folder", "?") for recs in runs.values() for rec in recs.values()}
+    print(f"{'sequence':<12}" + "".join(f"{tag[:16]:>18}" for tag in args.tags))
+    for s in seqs:
+        cells = []
+        for tag in args.tags:
+            vals = [r["avg_overlap"] for (q, _), r in runs[tag].items() if q == s]
+            cells.append(f"{_mean(vals):.3f} ({len(vals)})" if vals else "-")
+        print(f"{s:<12}" + "".join(f"{c:>18}" for c in cells))
+    for tag in args.tags:
+        recs = runs[tag]
+        per_seq = {s: _mean(r["avg_overlap"] for (q, _), r in recs.items() if q == s) for s in seqs}
+        done = [s for s in seqs if any(q == s for q, _ in recs)]
+        ks = sorted({k for _, k in recs})
+        per_k = [_mean(r["avg_overlap"] for (_, kk), r in recs.items() if kk == k) for k in ks]
+        by_folder = {}
+        for s in done:
+            by_folder.setdefault(folders[s], []).append(per_seq[s])
+        parts = " ".join(f"{f} {_mean(v):.3f} ({len(v)})" for f, v in sorted(by_folder.items()))
+        fps = _mean(r["fps"] for r in recs.values())
+        print(
+            f"{tag}: mean {_mean(per_seq[s] for s in done):.3f} over {len(done)} sequences; "
+            f"per seed {' / '.join(f'{v:.3f}' for v in per_k)}; {parts}; {fps:.1f} fps"
+        )
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    r = sub.add_parser("run")
+    r.add_argument("--tag", required=True)
+    r.add_argument("--config", default="{}", help="TrackerConfig fields as JSON")
+    r.add_argument("--seeds", type=int, default=3)
+    r.add_argument("--workers", type=int, default=2)
+    r.add_argument("--data", nargs="+", default=DEFAULT_DATA)
+    r.add_argument("--out", default=DEFAULT_OUT)
+    r.add_argument("--sequences", default=None, help="comma-separated names (default: all)")
+    s = sub.add_parser("show")
+    s.add_argument("tags", nargs="+")
+    s.add_argument("--out", default=DEFAULT_OUT)
+    s.add_argument("--seeds", type=int, default=None)
+    args = ap.parse_args()
+    run(args) if args.cmd == "run" else show(args)
+
+
+if __name__ == "__main__":
+    main()
