@@ -7,8 +7,9 @@ Data flows one way, one stage per module::
           --warp--------> candidate patches, one batched remap per plane
           --features----> K views, (d_k, n) normalized columns
           --solvers-----> codes C (K, N, n) and outliers E over the templates
-          --likelihood--> p_i = exp(-alpha * (sum_k ||D^k c_i^k - x_i^k||^2 + a_i))
-                          (a_i: the anchor term, smtmvt.anchor)
+          --likelihood--> p_i = exp(-alpha * (sum_k ||D^k c_i^k - x_i^k||^2 + a_i + f_i))
+                          (a_i: the anchor term, smtmvt.anchor; f_i: the
+                          foreground term, smtmvt.foreground)
           --state-------> best candidate = result; template update; resampling
 
 Usage (like OpenCV's trackers)::
@@ -35,6 +36,7 @@ from .anchor import anchor_offsets
 from .background import background_offsets, ring_states
 from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
+from .foreground import RING, box_contrast, foreground_map, foreground_model, ring_window
 from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine
 from .likelihood import Observation, observe
 from .motion import propagate, pull_shape, resample
@@ -211,6 +213,23 @@ class Tracker:
         sig_i, sig_f, sig_c = (cfg.antialias * step for step in steps)
         return sig_i, sig_f, sig_c
 
+    def _contrast(self, frame: PreparedFrame, states: np.ndarray, plane_scale: float) -> np.ndarray:
+        """Foreground contrast (:func:`smtmvt.foreground.box_contrast`) of each
+        state's box on the frame's color plane, ``(m,)`` float64 (the term on)."""
+        if self._fg_model is None:
+            raise RuntimeError("the foreground term is off (config.foreground_weight 0)")
+        boxes = self._plane_boxes(frame, states, plane_scale)
+        window = ring_window(boxes, frame.shape)  # the map is needed only where the boxes' rings reach
+        return box_contrast(foreground_map(frame.color, self._fg_model, window), boxes)
+
+    @staticmethod
+    def _plane_boxes(frame: PreparedFrame, states: np.ndarray, plane_scale: float) -> np.ndarray:
+        """The states' boxes ``(m, 4)`` in the pixels of the frame's planes (a crop's own)."""
+        boxes = affine_to_box(states).reshape(-1, 4) * plane_scale
+        boxes[:, 0] -= frame.origin[0]
+        boxes[:, 1] -= frame.origin[1]
+        return boxes
+
     @staticmethod
     def _plane_extent(params: np.ndarray, plane_scale: float) -> tuple:
         """Bounding box ``(x0, y0, x1, y1)`` of the states' squares on the plane."""
@@ -344,6 +363,8 @@ class Tracker:
             self._spread[: int(round(cfg.narrow_fraction * cfg.n_particles))] = cfg.narrow_scale
         self._work_box = tuple(float(v) for v in wb)
         self._box = tuple(float(v) for v in b)
+        # the foreground term's color model: the first box against its surroundings, on the whole frame
+        self._fg_model = foreground_model(prepared.color, wb) if cfg.foreground_weight else None
         t_states = self._template_states(self._state)
         if self._crop:  # the templates' planes as every later frame's
             prepared = self._prepare(frame, "init frame", self._channels, 1.0, t_states)
@@ -371,6 +392,9 @@ class Tracker:
         if states is not None and self._crop:
             plane_shape = (shape[0], shape[1]) if size is None else (size[1], size[0])
             reach = smooth_reach(max(self._smoothing(plane_scale))) + 1
+            if cfg.foreground_weight:  # the foreground term reads the rings around the boxes
+                states = np.array(states, dtype=np.float64)
+                states[:, :4] *= RING
             window = plane_window(self._plane_extent(states, plane_scale), plane_shape, reach)
             # Tan-Triggs' statistics: the current box grown by crop_context about its centre
             context = self._state.copy()
@@ -464,6 +488,9 @@ class Tracker:
                 first = self._terms_of([Dk[:, 0] for Dk in self._templates.dictionaries])
                 anchor = anchor_offsets(X_terms, first, cfg.anchor_weight)
                 offset = anchor if offset is None else offset + anchor
+            if cfg.foreground_weight:
+                fg = cfg.foreground_weight * (1.0 - self._contrast(prepared, states, plane_scale))
+                offset = fg if offset is None else offset + fg
         # A candidate mostly outside the image is not a valid observation.
         with self._timed("motion"):
             valid = inside_fraction(states, work_shape) >= 0.5
