@@ -47,6 +47,7 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
             with a kernel-weighted model              seeds 3-5: 0.625 [16]
             with 6 bins per channel                   seeds 3-5: 0.613 [16]
             with foreground_weight 0.5                seeds 3-5: 0.601 against 0.623 [18]
+            with foreground_weight 2                  seeds 3-5: 0.603 against 0.623 [18]
             with antialias 0                          seeds 3-5: 0.581 against 0.623 [18]
             with the intensity patches not smoothed   stopped: 0.613 against 0.643 on 8 [18]
             with crop_planes                          0.616 over 9 seeds against 0.615 [19]
@@ -293,6 +294,8 @@ the intensity patches alone unsmoothed gave 0.613 against 0.643 on the
 first 8 sequences done (Car4 0.79 -> 0.59, David 0.62 -> 0.50, FaceOcc1
 0.76 -> 0.70), stopped. ``foreground_weight`` 0.5: 0.601 (David 0.62 ->
 0.41, Singer2 0.59 -> 0.47, Soccer 0.28 -> 0.21; Basketball 0.59 -> 0.64).
+At 2: 0.603 (Subway 0.68 -> 0.34, Football 0.71 -> 0.62, Walking2 0.39 ->
+0.34; Basketball 0.59 -> 0.71, Bolt 0.37 -> 0.44): 1 is the better weight.
 
 [19] ``crop_planes`` with the foreground term (stop 17): over the 9 seeds
 0-8, 0.616 against 0.615 (per seed 0.609 / 0.589 / 0.607 / 0.652 / 0.614 /
