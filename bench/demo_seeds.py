@@ -24,6 +24,7 @@ import numpy as np
 from smtmvt import Tracker, TrackerConfig
 from smtmvt.demo import make_demo_sequence
 from smtmvt.evaluation.metrics import overlap_ratio
+from smtmvt.tracker import track_frames
 
 LATE = 60  # first frame of the "late" mean, before the occlusion
 
@@ -39,8 +40,7 @@ def main() -> None:
     rows = []
     for seed in range(args.seeds):
         tracker = Tracker(TrackerConfig(**config, seed=seed))
-        tracker.init(demo.frames[0], demo.groundtruth[0])
-        boxes = np.array([demo.groundtruth[0]] + [tracker.update(f).box for f in demo.frames[1:]])
+        boxes = np.array([box for _, box, _ in track_frames(tracker, demo.frames, demo.groundtruth[0])])
         overlap = overlap_ratio(boxes, demo.groundtruth)
         rows.append((overlap.mean(), overlap[LATE:].mean()))
         print(f"seed {seed}: mean overlap {rows[-1][0]:.3f}, from frame {LATE} {rows[-1][1]:.3f}", flush=True)
