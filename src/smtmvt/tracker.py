@@ -29,6 +29,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from typing import Any
 
+import cv2
 import numpy as np
 from threadpoolctl import ThreadpoolController
 
@@ -189,14 +190,31 @@ class Tracker:
             win = sample_window((x0 - ox, y0 - oy, x1 - ox, y1 - oy), frame.shape)
             sig_i, sig_f, sig_c = self._smoothing(plane_scale)
             X, Y = grid(fs)
-            XC, YC = (X, Y) if cs == fs else grid(cs)
-            patches = Patches(
-                intensity=remap_patches(smooth(frame.normalized, sig_i, win), *grid(self._intensity_size)),
-                gray=remap_patches(smooth(frame.normalized, sig_f, win), X, Y) if self._needs_gray else None,
-                color=remap_patches(smooth(frame.color, sig_c, win), XC, YC).reshape(len(params), cs[0], cs[1], -1),
-                raw=remap_patches(smooth(frame.gray, sig_f, win), X, Y) if self._needs_raw else None,
-            )
+            intensity = remap_patches(smooth(frame.normalized, sig_i, win), *grid(self._intensity_size))
+            gray = remap_patches(smooth(frame.normalized, sig_f, win), X, Y) if self._needs_gray else None
+            if self._needs_raw and cs == fs and sig_c == sig_f:
+                color, raw = self._color_and_raw(frame, sig_f, win, X, Y)
+            else:
+                XC, YC = (X, Y) if cs == fs else grid(cs)
+                color = remap_patches(smooth(frame.color, sig_c, win), XC, YC).reshape(len(params), cs[0], cs[1], -1)
+                raw = remap_patches(smooth(frame.gray, sig_f, win), X, Y) if self._needs_raw else None
+            patches = Patches(intensity=intensity, gray=gray, color=color, raw=raw)
         return patches
+
+    @staticmethod
+    def _color_and_raw(frame: PreparedFrame, sigma: float, win, X, Y) -> tuple[np.ndarray, np.ndarray]:
+        """The color ``(n, fh, fw, C)`` and raw gray ``(n, fh, fw)`` patches on one
+        grid and smoothing, sampled together: a gray frame's color plane is its
+        gray plane, sampled once; an RGB frame's three channels and its gray
+        plane are smoothed and sampled as one 4-channel plane (OpenCV samples 4
+        channels in about the time of 1, with the same values as each channel
+        alone), the color patches being a view of the first three channels."""
+        if frame.color.shape[2] == 1:  # prepare_frame: a gray frame's color plane is its gray plane
+            color = remap_patches(smooth(frame.color, sigma, win), X, Y)
+            return color, np.ascontiguousarray(color[..., 0])
+        plane = cv2.merge([frame.color[..., 0], frame.color[..., 1], frame.color[..., 2], frame.gray])
+        both = remap_patches(smooth(plane, sigma, win), X, Y)
+        return both[..., :3], np.ascontiguousarray(both[..., 3])
 
     def _smoothing(self, plane_scale: float) -> tuple[float, float, float]:
         """Anti-aliasing sigmas (plane pixels) of the intensity, feature-size and

@@ -61,44 +61,56 @@ def soft_binning_matrix(bins: int = COLOR_BINS, levels: int = _LEVELS) -> np.nda
 
 
 @njit(cache=True, nogil=True, boundscheck=False)
-def _cell_histograms(colors, row_of_value, lo, w_lo, w_hi, out):  # pragma: no cover - compiled
-    """Soft histograms ``out[patch, row, bin]`` (float64, not yet divided by the cell
-    area) of ``colors (n, P)``, each patch's P values (pixels x channels, flattened);
-    value ``i`` counts in histogram row ``row_of_value[i]`` (its cell and channel).
+def _cell_histograms(colors, row_of_value, lo, w_lo, hi, w_hi, out):  # pragma: no cover - compiled
+    """Soft histograms ``out[patch, bin, row]`` (float64, not yet divided by the cell
+    area; bins before rows) of ``colors (n, h, w, C)`` float32 (any strides: a
+    channel view of a wider array is read in place); value ``i`` of a patch, in
+    ``(y, x, channel)`` order, counts in histogram row ``row_of_value[i]`` (its
+    cell and channel).
 
     One patch at a time (its level counts stay in cache): each value's level
     ``round(255 v)``, of ``v`` clipped to [0, 1], is computed in a vectorized
     loop, in float32 as ``floor(clip(255 v + 0.5, 0.5, 255.5))`` (round half
     up; clipping after the scale equals clipping to [0, 1] first; the value is
-    positive, so truncation is the floor), then counted. The counts are mapped
-    to the bins by the soft-binning matrix W, whose rows have two nonzero
-    weights (``w_lo`` at ``lo``, ``w_hi`` at ``lo + 1``): 2 products per level
-    instead of ``bins``, each bin summed in level order.
+    positive, so truncation is the floor), then counted, the counts laid out
+    ``(level, row)``. The counts are mapped to the bins by the soft-binning
+    matrix W, whose rows have two nonzero weights (``w_lo`` at ``lo``, ``w_hi``
+    at ``hi = lo + 1``, or a weight 0 at the last bin): 2 products per level
+    instead of ``bins``, each bin summed in level order, all rows of a level at
+    once (independent sums, so the loop vectorizes instead of waiting on one
+    running sum; adding a zero product leaves a sum as it was, so levels with
+    no votes need no test).
     """
-    n, m = colors.shape
-    rows = out.shape[1]
+    n, h, w, c = colors.shape
+    m = h * w * c
+    rows = out.shape[2]
     levels = lo.shape[0]
     scale = np.float32(levels - 1)
     half = np.float32(0.5)
     top = np.float32(levels - 0.5)
-    counts = np.zeros(rows * levels, dtype=np.int32)
+    counts = np.zeros(levels * rows, dtype=np.int32)
     slot = np.empty(m, dtype=np.int64)
-    offset = row_of_value * levels
     for k in range(n):
         values = colors[k]
-        for i in range(m):
-            slot[i] = offset[i] + np.int64(min(max(values[i] * scale + half, half), top))
+        i = 0
+        for y in range(h):
+            for x in range(w):
+                for ch in range(c):
+                    v = values[y, x, ch]
+                    slot[i] = np.int64(min(max(v * scale + half, half), top)) * rows + row_of_value[i]
+                    i += 1
         counts[:] = 0
         for i in range(m):
             counts[slot[i]] += 1
-        for r in range(rows):
-            base = r * levels
-            for q in range(levels):
-                c = counts[base + q]
-                if c:
-                    out[k, r, lo[q]] += c * w_lo[q]
-                    if w_hi[q] != 0.0:
-                        out[k, r, lo[q] + 1] += c * w_hi[q]
+        hist = out[k]
+        for q in range(levels):
+            base = q * rows
+            a, wa = lo[q], w_lo[q]
+            for r in range(rows):
+                hist[a, r] += counts[base + r] * wa
+            b, wb = hi[q], w_hi[q]
+            for r in range(rows):
+                hist[b, r] += counts[base + r] * wb
     return out
 
 
@@ -110,14 +122,16 @@ def _grid_histograms(colors: np.ndarray, grid: int, bins: int) -> np.ndarray:
     cell = cell_map(h, w, grid)  # (h, w)
     row_of_value = (cell[:, :, None] * c + np.arange(c)).ravel()  # histogram row of each (y, x, channel)
     W = soft_binning_matrix(bins, _LEVELS)
+    levels = np.arange(_LEVELS)
     lo = np.argmax(W > 0, axis=1)  # each level's first bin; the second is lo + 1 (weight 0 past the end)
-    w_lo = W[np.arange(_LEVELS), lo]
-    w_hi = np.where(lo + 1 < bins, W[np.arange(_LEVELS), np.minimum(lo + 1, bins - 1)], 0.0)
-    hist = np.zeros((n, grid * grid * c, bins))
-    flat = np.ascontiguousarray(colors, dtype=np.float32).reshape(n, h * w * c)
-    _cell_histograms(flat, row_of_value, lo, w_lo, w_hi, hist)
+    hi = np.minimum(lo + 1, bins - 1)
+    w_lo = W[levels, lo]
+    w_hi = np.where(lo + 1 < bins, W[levels, hi], 0.0)
+    hist = np.zeros((n, bins, grid * grid * c))
+    _cell_histograms(np.asarray(colors, dtype=np.float32), row_of_value, lo, w_lo, hi, w_hi, hist)
     area = np.bincount(cell.ravel(), minlength=grid * grid).reshape(1, grid * grid, 1, 1)
-    return (hist.reshape(n, grid * grid, c, bins) / area).reshape(n, -1).astype(np.float32)
+    hist = hist.transpose(0, 2, 1).reshape(n, grid * grid, c, bins)
+    return (hist / area).reshape(n, -1).astype(np.float32)
 
 
 def color_histograms(colors: np.ndarray, bins: int = COLOR_BINS) -> np.ndarray:
