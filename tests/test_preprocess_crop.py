@@ -7,6 +7,7 @@ import pytest
 from smtmvt import Tracker, TrackerConfig
 from smtmvt.demo import make_demo_sequence
 from smtmvt.features import tan_triggs
+from smtmvt.features.tan_triggs import difference_of_gaussians, tan_triggs_scales
 from smtmvt.geometry import box_to_affine
 from smtmvt.motion import propagate
 from smtmvt.preprocess import plane_window, prepare_crop, prepare_frame, to_unit_range
@@ -48,6 +49,39 @@ def test_tan_triggs_statistics_over_a_region(frame):
     inside = (slice(50, 90), slice(70, 150))
     ratio = np.abs(tan_triggs(g, region=region)[inside]).mean() / np.abs(tan_triggs(g)[inside]).mean()
     assert ratio < 0.9
+
+
+def test_tan_triggs_divisors_are_the_robust_means_and_can_be_given(frame):
+    gray = cv2.cvtColor(frame, cv2.COLOR_RGB2GRAY)
+    out, (s1, s2) = tan_triggs_scales(gray)
+    d = difference_of_gaussians((gray / 255.0) ** 0.2, 1.0, 2.0)
+    assert s1 == pytest.approx(np.mean(np.abs(d) ** 0.1) ** 10, rel=1e-9)
+    assert s2 == pytest.approx(np.mean(np.minimum(np.abs(d / s1), 10.0) ** 0.1) ** 10, rel=1e-9)
+    np.testing.assert_array_equal(out, tan_triggs(gray))
+    np.testing.assert_array_equal(tan_triggs(gray, scales=(s1, s2)), out)
+    # given divisors replace the measured ones: twice the divisors, half the equalized values (before tanh)
+    half = tan_triggs(gray, scales=(2 * s1, s2))
+    np.testing.assert_allclose(np.arctanh(half / 10), np.arctanh(np.clip(out / 10, -0.999, 0.999)) / 2, atol=2e-3)
+
+
+def test_a_crop_normalized_with_the_whole_frames_divisors_holds_the_whole_frames_plane(frame):
+    states = _states()
+    window = plane_window(
+        (states[:, 4].min() - 30, states[:, 5].min() - 30, states[:, 4].max() + 30, states[:, 5].max() + 30),
+        frame.shape[:2],
+        3,
+    )
+    whole = prepare_frame(frame, "f", 3)
+    assert min(whole.contrast) > 0
+    crop = prepare_crop(frame, "f", 3, window, (1.0, 1.0), frame.shape[:2], contrast=whole.contrast)
+    assert crop.contrast == whole.contrast
+    x0, y0, x1, y1 = window
+    ox, oy = (int(v) for v in crop.origin)
+    local = (slice(y0 - oy, y1 - oy), slice(x0 - ox, x1 - ox))
+    np.testing.assert_allclose(crop.normalized[local], whole.normalized[y0:y1, x0:x1], atol=2e-5)
+    # the crop alone normalizes differently (its own window's statistics)
+    own = prepare_crop(frame, "f", 3, window, (1.0, 1.0), frame.shape[:2])
+    assert np.abs(own.normalized[local] - whole.normalized[y0:y1, x0:x1]).max() > 1e-2
 
 
 @pytest.mark.parametrize("stats", [None, (20, 10, 200, 150)])
@@ -135,6 +169,61 @@ def test_cropped_planes_give_the_whole_frames_views():
             np.testing.assert_array_equal(whole, crop, err_msg=name)
 
 
+def test_crop_refresh_computes_the_whole_plane_every_kth_frame(monkeypatch):
+    """``crop_refresh`` k: frames 0, k, 2k, ... are prepared whole, the others
+    cropped with the last whole plane's Tan-Triggs divisors; k = 1 is the
+    whole-plane tracker, box for box."""
+    import smtmvt.tracker as tracker_module
+
+    demo = make_demo_sequence(n_frames=10)
+    cropped, given = [], []
+    real = tracker_module.prepare_crop
+
+    def spy(*args, **kwargs):
+        given.append(kwargs.get("contrast"))
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(tracker_module, "prepare_crop", spy)
+    t = Tracker(TrackerConfig(n_particles=60, seed=3, crop_planes=True, crop_refresh=4))
+    t.init(demo.frames[0], demo.groundtruth[0])
+    divisors = [t._tt_divisors]
+    for f in demo.frames[1:]:
+        n = len(given)
+        t.update(f)
+        cropped.append(len(given) > n)
+        divisors.append(t._tt_divisors)
+    assert cropped == [i % 4 != 0 for i in range(1, 10)]
+    assert all(g == divisors[(i // 4) * 4] for i, g in zip([i for i in range(1, 10) if i % 4], given))
+    assert divisors[4] != divisors[0] and divisors[3] == divisors[0]
+    monkeypatch.setattr(tracker_module, "prepare_crop", real)
+    boxes = []
+    for cfg in (
+        TrackerConfig(n_particles=60, seed=3),
+        TrackerConfig(n_particles=60, seed=3, crop_planes=True, crop_refresh=1),
+    ):
+        t = Tracker(cfg)
+        t.init(demo.frames[0], demo.groundtruth[0])
+        boxes.append([t.update(f).box for f in demo.frames[1:]])
+    assert boxes[0] == boxes[1]
+
+
+def test_crop_refreshed_planes_give_the_whole_frames_views():
+    """Between refreshes the crop of a frame, normalized with that frame's own
+    divisors, gives every view of the whole frame (intensity up to the DoG's rounding)."""
+    demo = make_demo_sequence(n_frames=3)
+    t = Tracker(TrackerConfig(n_particles=50, seed=4, crop_planes=True, crop_refresh=5))
+    t.init(demo.frames[0], demo.groundtruth[0])
+    states = propagate(np.repeat(t._state[None], 50, axis=0), t.config.affine_std, np.random.default_rng(0))
+    whole = t._views(t._prepare(demo.frames[0], "f", t._channels, 1.0, None), states)
+    t._frame_index = 1  # not a refresh frame: cropped, with frame 0's divisors
+    prepared = t._prepare(demo.frames[0], "f", t._channels, 1.0, states)
+    assert prepared.full_shape is not None
+    for name, a, b in zip(t.config.views, whole, t._views(prepared, states)):
+        np.testing.assert_allclose(a, b, atol=1e-4, err_msg=name)
+
+
 def test_crop_context_below_one_is_rejected():
     with pytest.raises(ValueError, match="crop_context"):
         TrackerConfig(crop_planes=True, crop_context=0.5)
+    with pytest.raises(ValueError, match="crop_refresh"):
+        TrackerConfig(crop_planes=True, crop_refresh=-1)

@@ -541,6 +541,15 @@ class TrackerConfig:
         Forced off while ``background_weight`` > 0 (the ring reads farther).
     crop_context : float >= 1
         See ``crop_planes``.
+    crop_refresh : int >= 0
+        With ``crop_planes``: 0 takes Tan-Triggs' statistics over the box
+        grown ``crop_context`` times (above); k >= 1 computes the whole plane
+        on the first frame and on every k-th frame after it (as without
+        ``crop_planes``) and normalizes the crops of the frames between with
+        that plane's two contrast divisors
+        (:func:`smtmvt.features.tan_triggs.tan_triggs_scales`), so what the
+        crop holds no longer moves the statistics (an occluder entering the
+        box's surroundings did, note [19]); 1 is the whole-plane tracker.
     antialias : float
         Smooth each plane before sampling it on the patch grids, by a Gaussian
         of ``antialias`` times the sampling step (target size over patch size,
@@ -628,6 +637,7 @@ class TrackerConfig:
     scale_normalize: bool = True
     crop_planes: bool = False
     crop_context: float = 3.0
+    crop_refresh: int = 0
     antialias: float = 1.0
     hog_plane: str = "gray"
     lbp_plane: str = "gray"
@@ -676,6 +686,7 @@ class TrackerConfig:
             "narrow_scale": self.narrow_scale > 0,
             "translation_power": 0 <= self.translation_power <= 1,
             "crop_context": self.crop_context >= 1,
+            "crop_refresh": int(self.crop_refresh) == self.crop_refresh and self.crop_refresh >= 0,
             "aspect_std": self.aspect_std is None or self.aspect_std >= 0,
         }
         for name, ok in checks.items():
@@ -758,6 +769,7 @@ class TrackerConfig:
             scale_normalize=False,
             crop_planes=False,
             crop_context=3.0,
+            crop_refresh=0,
             antialias=0.0,
             hog_plane="tan_triggs",
             lbp_plane="tan_triggs",

@@ -17,8 +17,7 @@ from dataclasses import dataclass, replace
 import cv2
 import numpy as np
 
-from .features import tan_triggs
-from .features.tan_triggs import TAN_TRIGGS_REACH
+from .features.tan_triggs import TAN_TRIGGS_REACH, tan_triggs_scales
 
 __all__ = [
     "PreparedFrame",
@@ -46,6 +45,9 @@ class PreparedFrame:
         plane (pixel-centre coordinates): a crop holds the point ``(u, v)`` of
         the whole plane at ``(u - x, v - y)``. (0, 0) for a whole frame.
     full_shape : (H, W) of the whole plane, or None when the planes are it.
+    contrast : (s1, s2) float, the two divisors of Tan-Triggs' contrast
+        equalization that made ``normalized``
+        (:func:`~smtmvt.features.tan_triggs.tan_triggs_scales`).
     """
 
     normalized: np.ndarray
@@ -53,6 +55,7 @@ class PreparedFrame:
     gray: np.ndarray
     origin: tuple = (0.0, 0.0)
     full_shape: tuple | None = None
+    contrast: tuple = (0.0, 0.0)
 
     @property
     def shape(self) -> tuple:
@@ -124,7 +127,9 @@ def _unit_float(a: np.ndarray, where: str) -> np.ndarray:
     return np.clip(f, 0.0, 1.0)
 
 
-def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None = None, region=None) -> PreparedFrame:
+def prepare_frame(
+    frame: np.ndarray, where: str = "frame", channels: int | None = None, region=None, contrast=None
+) -> PreparedFrame:
     """Validate ``frame`` and compute its Tan-Triggs gray plane and color plane.
 
     Parameters
@@ -141,6 +146,10 @@ def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None 
         over which Tan-Triggs takes its contrast statistics (a crop of a
         frame, normalized like the region of the frame it will be read in);
         None: the whole frame.
+    contrast : optional ``(s1, s2)``: Tan-Triggs' equalization divisors to use
+        instead of measuring them (``region`` is then unused): the
+        ``contrast`` of another prepared frame, for example the whole frame
+        this one is a crop of.
     """
     f = to_unit_range(frame, where)
     if channels is None:
@@ -157,19 +166,26 @@ def prepare_frame(frame: np.ndarray, where: str = "frame", channels: int | None 
     if region is not None:
         x0, y0, x1, y1 = _inside(region, f.shape, f"{where}: region", "frame")
         stats = (slice(y0, y1), slice(x0, x1))
+    normalized, scales = tan_triggs_scales(gray, region=stats, scales=contrast)
     return PreparedFrame(
-        normalized=tan_triggs(gray, region=stats), color=np.ascontiguousarray(color), gray=np.ascontiguousarray(gray)
+        normalized=normalized,
+        color=np.ascontiguousarray(color),
+        gray=np.ascontiguousarray(gray),
+        contrast=scales,
     )
 
 
-def prepare_crop(frame: np.ndarray, where: str, channels: int, window, scale, plane_shape, stats=None) -> PreparedFrame:
+def prepare_crop(
+    frame: np.ndarray, where: str, channels: int, window, scale, plane_shape, stats=None, contrast=None
+) -> PreparedFrame:
     """The planes of :func:`prepare_frame` on a window of the whole plane only.
 
     The whole plane is ``frame`` resized by ``scale = (sx, sy)`` plane pixels
     per frame pixel (pixel edges to pixel edges), of shape ``plane_shape (H,
     W)``; ``window (x0, y0, x1, y1)`` int are the plane pixels that will be read
     (:func:`plane_window`), ``stats`` (the same form; None: ``window``) those
-    Tan-Triggs takes its contrast statistics over. Only the frame pixels under
+    Tan-Triggs takes its contrast statistics over, unless ``contrast (s1,
+    s2)`` gives them (:func:`prepare_frame`). Only the frame pixels under
     both, plus a margin for Tan-Triggs' filters
     (:data:`~smtmvt.features.tan_triggs.TAN_TRIGGS_REACH`) and the
     interpolation, are converted and resized by exactly ``scale``. The result
@@ -199,7 +215,7 @@ def prepare_crop(frame: np.ndarray, where: str, channels: int, window, scale, pl
         max(min(int(math.ceil(sx1 - ox)), w), 1),
         max(min(int(math.ceil(sy1 - oy)), h), 1),
     )
-    prepared = prepare_frame(f, where, channels, region)
+    prepared = prepare_frame(f, where, channels, region, contrast)
     return replace(prepared, origin=(ox, oy), full_shape=(int(plane_shape[0]), int(plane_shape[1])))
 
 

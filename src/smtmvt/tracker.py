@@ -192,6 +192,7 @@ class Tracker:
             X, Y = grid(fs)
             intensity = remap_patches(smooth(frame.normalized, sig_i, win), *grid(self._intensity_size))
             gray = remap_patches(smooth(frame.normalized, sig_f, win), X, Y) if self._needs_gray else None
+            raw: np.ndarray | None
             if self._needs_raw and cs == fs and sig_c == sig_f:
                 color, raw = self._color_and_raw(frame, sig_f, win, X, Y)
             else:
@@ -332,6 +333,8 @@ class Tracker:
         cfg = self.config
         # planes computed on the candidates' window only (the background ring reads farther)
         self._crop = bool(cfg.crop_planes and not cfg.background_weight)
+        self._tt_divisors: tuple | None = None  # config.crop_refresh: the last whole plane's Tan-Triggs divisors
+        self._frame_index = 0
         shape = np.shape(frame)
         if cfg.frame_size is None or len(shape) < 2:
             self._scale = np.ones(2)
@@ -384,7 +387,7 @@ class Tracker:
         # the foreground term's color model: the first box against its surroundings, on the whole frame
         self._fg_model = foreground_model(prepared.color, wb) if cfg.foreground_weight else None
         t_states = self._template_states(self._state)
-        if self._crop:  # the templates' planes as every later frame's
+        if self._crop and not cfg.crop_refresh:  # the templates' planes as every later frame's
             prepared = self._prepare(frame, "init frame", self._channels, 1.0, t_states)
         self._templates = TemplateSet([np.array(v, dtype=np.float32) for v in self._views(prepared, t_states)])
         self._bases: list | None = None  # range_basis of each weighted dictionary, kept until a template changes
@@ -407,22 +410,28 @@ class Tracker:
             to_unit_range(frame, where)  # raises, naming the frame and its shape
         shape = np.shape(frame)
         size = self._plane_size(shape, plane_scale)
-        if states is not None and self._crop:
+        refresh = cfg.crop_refresh and (self._frame_index % cfg.crop_refresh == 0 or self._tt_divisors is None)
+        if states is not None and self._crop and not refresh:
             plane_shape = (shape[0], shape[1]) if size is None else (size[1], size[0])
             reach = smooth_reach(max(self._smoothing(plane_scale))) + 1
             if cfg.foreground_weight:  # the foreground term reads the rings around the boxes
                 states = np.array(states, dtype=np.float64)
                 states[:, :4] *= RING
             window = plane_window(self._plane_extent(states, plane_scale), plane_shape, reach)
+            scale = (self._scale[0] * plane_scale, self._scale[1] * plane_scale)
+            if cfg.crop_refresh:  # Tan-Triggs' statistics: the last whole plane's
+                return prepare_crop(frame, where, channels, window, scale, plane_shape, contrast=self._tt_divisors)
             # Tan-Triggs' statistics: the current box grown by crop_context about its centre
             context = self._state.copy()
             context[:4] *= cfg.crop_context
             stats = plane_window(self._plane_extent(context[None], plane_scale), plane_shape)
-            scale = (self._scale[0] * plane_scale, self._scale[1] * plane_scale)
             return prepare_crop(frame, where, channels, window, scale, plane_shape, stats)
         if size is not None:
             frame = resize_frame(to_unit_range(frame, where), size)
-        return prepare_frame(frame, where, channels)
+        prepared = prepare_frame(frame, where, channels)
+        if refresh:
+            self._tt_divisors = prepared.contrast
+        return prepared
 
     def _plane_size(self, shape, plane_scale: float) -> tuple[int, int] | None:
         """``(width, height)`` of the planes for an input frame of ``shape``, or None

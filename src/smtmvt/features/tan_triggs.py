@@ -40,7 +40,7 @@ from __future__ import annotations
 import cv2
 import numpy as np
 
-__all__ = ["tan_triggs", "difference_of_gaussians", "to_unit_float", "TAN_TRIGGS_REACH"]
+__all__ = ["tan_triggs", "tan_triggs_scales", "difference_of_gaussians", "to_unit_float", "TAN_TRIGGS_REACH"]
 
 _TRUNCATE = 4.0  # scipy.ndimage.gaussian_filter's default kernel truncation
 
@@ -129,17 +129,19 @@ def difference_of_gaussians(image: np.ndarray, sigma0: float = 1.0, sigma1: floa
     return _gaussian(centred, sigma0) - _gaussian(centred, sigma1)
 
 
-def _equalize(image: np.ndarray, alpha: float, tau: float | None, region=None) -> np.ndarray:
-    """One contrast-equalization stage, its statistic taken over ``image[region]``
-    (``region`` a pair of slices, or None: the whole image); an all-zero region
-    leaves the image all zero."""
-    mag = np.abs(image if region is None else image[region])
-    if tau is not None:
-        np.minimum(mag, tau, out=mag)
-    scale = float(np.mean(np.power(mag, alpha, out=mag))) ** (1.0 / alpha)
+def _equalize(image: np.ndarray, alpha: float, tau: float | None, region=None, scale=None):
+    """One contrast-equalization stage: ``(image / scale, scale)``, the statistic
+    ``scale`` taken over ``image[region]`` (``region`` a pair of slices, or None:
+    the whole image) unless it is given; an all-zero region (or a scale that is
+    not positive) leaves the image all zero, with scale 0."""
+    if scale is None:
+        mag = np.abs(image if region is None else image[region])
+        if tau is not None:
+            np.minimum(mag, tau, out=mag)
+        scale = float(np.mean(np.power(mag, alpha, out=mag))) ** (1.0 / alpha)
     if not scale > 0:  # all-zero image (or underflow): nothing to equalize
-        return np.zeros_like(image)
-    return image / scale
+        return np.zeros_like(image), 0.0
+    return image / scale, float(scale)
 
 
 def tan_triggs(
@@ -150,6 +152,7 @@ def tan_triggs(
     alpha: float = 0.1,
     tau: float = 10.0,
     region=None,
+    scales=None,
 ) -> np.ndarray:
     """Tan-Triggs illumination normalization of a whole gray frame, or of a region of it.
 
@@ -172,10 +175,33 @@ def tan_triggs(
         :data:`TAN_TRIGGS_REACH` pixels beyond the region on every side that
         is not the frame's border, so that the region's difference of
         Gaussians equals the frame's.
+    scales : optional ``(s1, s2)`` float: the two equalizations' divisors,
+        used as given instead of being measured (``region`` is then unused):
+        those :func:`tan_triggs_scales` returned for another image (the whole
+        frame) make a crop of it normalize as that image did.
 
     Returns
     -------
     (H, W) float32 ndarray in [-tau, tau]. A constant image gives all zeros.
+    """
+    return tan_triggs_scales(image, gamma, sigma0, sigma1, alpha, tau, region, scales)[0]
+
+
+def tan_triggs_scales(
+    image: np.ndarray,
+    gamma: float = 0.2,
+    sigma0: float = 1.0,
+    sigma1: float = 2.0,
+    alpha: float = 0.1,
+    tau: float = 10.0,
+    region=None,
+    scales=None,
+) -> tuple[np.ndarray, tuple[float, float]]:
+    """:func:`tan_triggs` and its two equalization divisors: ``(out, (s1, s2))``.
+
+    ``s1 = mean(|D| ** alpha) ** (1 / alpha)`` of the difference of Gaussians
+    ``D`` (over ``region``), ``s2`` the same of ``min(tau, |D / s1|)``; 0 where
+    the stage met an all-zero statistic (the output is then all zero).
     """
     if not 0 < gamma <= 1:
         raise ValueError(f"gamma must be in (0, 1], got {gamma}")
@@ -183,12 +209,13 @@ def tan_triggs(
         raise ValueError(f"alpha must be > 0, got {alpha}")
     if not tau > 0:
         raise ValueError(f"tau must be > 0, got {tau}")
+    given = (None, None) if scales is None else (float(scales[0]), float(scales[1]))
     img = to_unit_float(image)
     img = np.power(img, gamma, out=img)
     img = difference_of_gaussians(img, sigma0, sigma1)
-    img = _equalize(img, alpha, None, region)
-    img = _equalize(img, alpha, tau, region)
+    img, s1 = _equalize(img, alpha, None, region, given[0])
+    img, s2 = _equalize(img, alpha, tau, region, given[1])
     out = np.tanh(img / tau, out=img)
     out *= tau
     # |tanh| <= 1 and rounding to float32 is monotone, so the result stays in [-tau, tau].
-    return out.astype(np.float32)
+    return out.astype(np.float32), (s1, s2)
