@@ -63,10 +63,9 @@ def soft_binning_matrix(bins: int = COLOR_BINS, levels: int = _LEVELS) -> np.nda
 @njit(cache=True, nogil=True, boundscheck=False)
 def _cell_histograms(colors, row_of_value, lo, w_lo, hi, w_hi, out):  # pragma: no cover - compiled
     """Soft histograms ``out[patch, bin, row]`` (float64, not yet divided by the cell
-    area; bins before rows) of ``colors (n, h, w, C)`` float32 (any strides: a
-    channel view of a wider array is read in place); value ``i`` of a patch, in
-    ``(y, x, channel)`` order, counts in histogram row ``row_of_value[i]`` (its
-    cell and channel).
+    area; bins before rows) of ``colors (n, P)``, each patch's P values (pixels x
+    channels, flattened); value ``i`` counts in histogram row ``row_of_value[i]``
+    (its cell and channel).
 
     One patch at a time (its level counts stay in cache): each value's level
     ``round(255 v)``, of ``v`` clipped to [0, 1], is computed in a vectorized
@@ -81,8 +80,7 @@ def _cell_histograms(colors, row_of_value, lo, w_lo, hi, w_hi, out):  # pragma: 
     running sum; adding a zero product leaves a sum as it was, so levels with
     no votes need no test).
     """
-    n, h, w, c = colors.shape
-    m = h * w * c
+    n, m = colors.shape
     rows = out.shape[2]
     levels = lo.shape[0]
     scale = np.float32(levels - 1)
@@ -92,13 +90,8 @@ def _cell_histograms(colors, row_of_value, lo, w_lo, hi, w_hi, out):  # pragma: 
     slot = np.empty(m, dtype=np.int64)
     for k in range(n):
         values = colors[k]
-        i = 0
-        for y in range(h):
-            for x in range(w):
-                for ch in range(c):
-                    v = values[y, x, ch]
-                    slot[i] = np.int64(min(max(v * scale + half, half), top)) * rows + row_of_value[i]
-                    i += 1
+        for i in range(m):
+            slot[i] = np.int64(min(max(values[i] * scale + half, half), top)) * rows + row_of_value[i]
         counts[:] = 0
         for i in range(m):
             counts[slot[i]] += 1
@@ -128,7 +121,8 @@ def _grid_histograms(colors: np.ndarray, grid: int, bins: int) -> np.ndarray:
     w_lo = W[levels, lo]
     w_hi = np.where(lo + 1 < bins, W[levels, hi], 0.0)
     hist = np.zeros((n, bins, grid * grid * c))
-    _cell_histograms(np.asarray(colors, dtype=np.float32), row_of_value, lo, w_lo, hi, w_hi, hist)
+    flat = np.ascontiguousarray(colors, dtype=np.float32).reshape(n, h * w * c)
+    _cell_histograms(flat, row_of_value, lo, w_lo, hi, w_hi, hist)
     area = np.bincount(cell.ravel(), minlength=grid * grid).reshape(1, grid * grid, 1, 1)
     hist = hist.transpose(0, 2, 1).reshape(n, grid * grid, c, bins)
     return (hist / area).reshape(n, -1).astype(np.float32)

@@ -41,14 +41,12 @@ __all__ = [
 ViewFn = Callable[["Patches"], np.ndarray]
 
 
-def _as_float32(name: str, value, ndim: int, layout: str, contiguous: bool = True) -> np.ndarray:
+def _as_float32(name: str, value, ndim: int, layout: str) -> np.ndarray:
     array = np.asarray(value)
     if array.ndim != ndim:
         raise ValueError(f"Patches.{name} must be {layout}, got shape {array.shape}")
     if not (np.issubdtype(array.dtype, np.floating) or np.issubdtype(array.dtype, np.integer)):
         raise TypeError(f"Patches.{name} must be a real-valued array, got dtype {array.dtype}")
-    if not contiguous:
-        return np.asarray(array, dtype=np.float32)
     return np.ascontiguousarray(array, dtype=np.float32)
 
 
@@ -75,10 +73,7 @@ class Patches:
         no view reads it.
 
     Arrays are converted to C-contiguous float32 (no copy when they already
-    are), except ``color``, which is float32 of any strides (the tracker
-    passes the color channels of patches sampled with a fourth, gray one:
-    copying them apart would cost more than sampling); shapes are checked,
-    values are not.
+    are); shapes are checked, values are not.
     """
 
     intensity: np.ndarray
@@ -88,7 +83,7 @@ class Patches:
 
     def __post_init__(self):
         intensity = _as_float32("intensity", self.intensity, 3, "(n, th, tw)")
-        color = _as_float32("color", self.color, 4, "(n, fh, fw, C)", contiguous=False)
+        color = _as_float32("color", self.color, 4, "(n, fh, fw, C)")
         n = intensity.shape[0]
         if n < 1:
             raise ValueError("Patches need at least one patch (n >= 1)")
