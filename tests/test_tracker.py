@@ -327,25 +327,26 @@ def test_search_expand_widens_the_translation_of_the_next_frames_particles(demo)
 
 @pytest.mark.parametrize("gray_frames", [False, True])
 def test_color_and_gray_patches_sampled_together_equal_each_sampled_alone(gray_frames):
-    """The tracker samples the color channels and the gray plane as one
-    4-channel plane (a gray frame's one plane once): bit for bit the patches
-    of smoothing and sampling each plane alone."""
+    """On cropped planes the tracker samples the color channels and the gray
+    plane as one 4-channel plane (a gray frame's one plane once): bit for bit
+    the patches of smoothing and sampling each plane alone."""
     from smtmvt.motion import propagate
     from smtmvt.preprocess import sample_window, smooth
     from smtmvt.warp import remap_patches, sampling_grid
 
     demo = make_demo_sequence(n_frames=2)
     frames = [f.mean(axis=2).astype(np.uint8) if gray_frames else f for f in demo.frames]
-    t = Tracker(TrackerConfig(n_particles=80, seed=1))
+    t = Tracker(TrackerConfig(n_particles=80, seed=1, crop_planes=True))
     t.init(frames[0], demo.groundtruth[0])
     states = propagate(np.repeat(t._state[None], 80, axis=0), t.config.affine_std, np.random.default_rng(0))
-    prepared = t._prepare(frames[1], "f", t._channels)
-    assert prepared.color.shape[2] == (1 if gray_frames else 3)
+    prepared = t._prepare(frames[1], "f", t._channels, 1.0, states)
+    assert prepared.color.shape[2] == (1 if gray_frames else 3) and prepared.full_shape is not None
     patches = t._patches(prepared, states)
     _, sigma, _ = t._smoothing(1.0)
     assert sigma > 1  # the anti-aliasing blur is on
     x0, y0, x1, y1 = t._plane_extent(states, 1.0)
-    win = sample_window((x0, y0, x1, y1), prepared.shape)
-    X, Y = sampling_grid(states, t.config.feature_size)
+    ox, oy = prepared.origin
+    win = sample_window((x0 - ox, y0 - oy, x1 - ox, y1 - oy), prepared.shape)
+    X, Y = sampling_grid(states, t.config.feature_size, 1.0, prepared.origin)
     np.testing.assert_array_equal(patches.color, remap_patches(smooth(prepared.color, sigma, win), X, Y))
     np.testing.assert_array_equal(patches.raw, remap_patches(smooth(prepared.gray, sigma, win), X, Y))
