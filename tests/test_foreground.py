@@ -123,13 +123,14 @@ def test_contrast_on_cropped_planes_equals_the_whole_frames():
     rng = np.random.default_rng(0)
     frames = [(rng.random((480, 480, 3)) * 255).astype(np.uint8) for _ in range(2)]
     box = (180.0, 190.0, 120.0, 100.0)
-    cfg = TrackerConfig(n_particles=40, seed=0, foreground_weight=1.0)
+    cfg = TrackerConfig(n_particles=40, seed=0, foreground_weight=1.0, crop_planes=False)
     whole, crop = Tracker(cfg), Tracker(cfg.replace(crop_planes=True))
     for t in (whole, crop):
         t.init(frames[0], box)
     np.testing.assert_array_equal(whole._fg_model, crop._fg_model)  # both from the whole first frame
     states = whole._particles + rng.normal(0, 1, (40, 6)) * [0.02, 0, 0, 0.02, 10, 10]
     a = whole._contrast(whole._prepare(frames[1], "f", whole._channels), states, 1.0)
+    crop._frame_index = 1  # not a frame of config.crop_refresh's whole planes
     cropped = crop._prepare(frames[1], "f", crop._channels, 1.0, states)
     assert cropped.shape[0] < 480 and cropped.shape[1] < 480  # a crop
     np.testing.assert_allclose(crop._contrast(cropped, states, 1.0), a, atol=1e-6)

@@ -157,7 +157,7 @@ def test_cropped_planes_give_the_whole_frames_views():
     the intensity view differs by Tan-Triggs' statistics only (measured cosines
     0.989-0.996 to the whole frame's views)."""
     demo = make_demo_sequence(n_frames=3)
-    t = Tracker(TrackerConfig(n_particles=50, seed=4, crop_planes=True))
+    t = Tracker(TrackerConfig(n_particles=50, seed=4, crop_planes=True, crop_refresh=0))
     t.init(demo.frames[0], demo.groundtruth[0])
     states = propagate(np.repeat(t._state[None], 50, axis=0), t.config.affine_std, np.random.default_rng(0))
     views = [t._views(t._prepare(demo.frames[1], "f", t._channels, 1.0, s), states) for s in (None, states)]
@@ -198,7 +198,7 @@ def test_crop_refresh_computes_the_whole_plane_every_kth_frame(monkeypatch):
     monkeypatch.setattr(tracker_module, "prepare_crop", real)
     boxes = []
     for cfg in (
-        TrackerConfig(n_particles=60, seed=3),
+        TrackerConfig(n_particles=60, seed=3, crop_planes=False),
         TrackerConfig(n_particles=60, seed=3, crop_planes=True, crop_refresh=1),
     ):
         t = Tracker(cfg)

@@ -339,6 +339,7 @@ def test_color_and_gray_patches_sampled_together_equal_each_sampled_alone(gray_f
     t = Tracker(TrackerConfig(n_particles=80, seed=1, crop_planes=True))
     t.init(frames[0], demo.groundtruth[0])
     states = propagate(np.repeat(t._state[None], 80, axis=0), t.config.affine_std, np.random.default_rng(0))
+    t._frame_index = 1  # not a frame of config.crop_refresh's whole planes
     prepared = t._prepare(frames[1], "f", t._channels, 1.0, states)
     assert prepared.color.shape[2] == (1 if gray_frames else 3) and prepared.full_shape is not None
     patches = t._patches(prepared, states)

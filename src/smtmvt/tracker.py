@@ -496,10 +496,15 @@ class Tracker:
             particles = propagate(particles, std, self._rng, shift, self._spread, cfg.translation_power, cfg.aspect_std)
         n = len(particles)
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
-        states = np.concatenate([particles, box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)])
+        probe_states = box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)
+        states = np.concatenate([particles, probe_states])
         with self._timed("preprocess"):
             try:
-                prepared = self._prepare(frame, f"frame {self._frame_index}", self._channels, plane_scale, states)
+                where = f"frame {self._frame_index}"
+                prepared = probe_planes = self._prepare(frame, where, self._channels, plane_scale, particles)
+                if len(probe_states) and prepared.full_shape is not None:
+                    # a crop: the probes' own, so that they do not move the particles' window
+                    probe_planes = self._prepare(frame, where, self._channels, plane_scale, probe_states)
             except Exception:
                 # a frame that cannot be read leaves the tracker as it was
                 self._rng.bit_generator.state = rng_state
@@ -507,7 +512,9 @@ class Tracker:
                 raise
             full = prepared.plane_shape
             work_shape = (int(round(full[0] / plane_scale)), int(round(full[1] / plane_scale)))
-        patches = self._patches(prepared, states, plane_scale)
+        patches = self._patches(prepared, particles, plane_scale)
+        if len(probe_states):
+            patches = patches.joined(self._patches(probe_planes, probe_states, plane_scale))
         # views computed for every candidate, and the views deferred (likelihood.observe)
         now, later = cfg.views[: self._n_first], cfg.views[self._n_first :]
         X = self._extract(patches, now)
@@ -522,7 +529,10 @@ class Tracker:
                 anchor = anchor_offsets(X_terms, first, cfg.anchor_weight)
                 offset = anchor if offset is None else offset + anchor
             if cfg.foreground_weight:
-                fg = cfg.foreground_weight * (1.0 - self._contrast(prepared, states, plane_scale))
+                contrast = self._contrast(prepared, particles, plane_scale)
+                if len(probe_states):
+                    contrast = np.concatenate([contrast, self._contrast(probe_planes, probe_states, plane_scale)])
+                fg = cfg.foreground_weight * (1.0 - contrast)
                 offset = fg if offset is None else offset + fg
         # A candidate mostly outside the image is not a valid observation.
         with self._timed("motion"):

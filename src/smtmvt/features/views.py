@@ -128,6 +128,19 @@ class Patches:
         raw = None if self.raw is None else self.raw[index]
         return Patches(self.intensity[index], gray, self.color[index], raw)
 
+    def joined(self, other: Patches) -> Patches:
+        """These patches followed by ``other``'s (the same sizes)."""
+
+        def cat(a, b):
+            return None if a is None or b is None else np.concatenate([a, b])
+
+        return Patches(
+            cat(self.intensity, other.intensity),
+            cat(self.gray, other.gray),
+            cat(self.color, other.color),
+            cat(self.raw, other.raw),
+        )
+
     def plane(self, name: str) -> np.ndarray:
         """The feature-size gray patches of ``name``: ``"tan_triggs"`` (``gray``) or ``"gray"`` (``raw``)."""
         if name == "tan_triggs":
