@@ -184,25 +184,23 @@ def tan_triggs(
     -------
     (H, W) float32 ndarray in [-tau, tau]. A constant image gives all zeros.
     """
-    return tan_triggs_scales(image, gamma, sigma0, sigma1, alpha, tau, region, scales)[0]
+    return _chain(image, gamma, sigma0, sigma1, alpha, tau, region, scales)[0]
 
 
-def tan_triggs_scales(
-    image: np.ndarray,
-    gamma: float = 0.2,
-    sigma0: float = 1.0,
-    sigma1: float = 2.0,
-    alpha: float = 0.1,
-    tau: float = 10.0,
-    region=None,
-    scales=None,
-) -> tuple[np.ndarray, tuple[float, float]]:
-    """:func:`tan_triggs` and its two equalization divisors: ``(out, (s1, s2))``.
+def tan_triggs_scales(image: np.ndarray, region=None, scales=None) -> tuple[np.ndarray, tuple[float, float]]:
+    """:func:`tan_triggs` with its default parameters, and its two equalization
+    divisors: ``(out, (s1, s2))``.
 
     ``s1 = mean(|D| ** alpha) ** (1 / alpha)`` of the difference of Gaussians
     ``D`` (over ``region``), ``s2`` the same of ``min(tau, |D / s1|)``; 0 where
-    the stage met an all-zero statistic (the output is then all zero).
+    the stage met an all-zero statistic (the output is then all zero). With
+    ``scales`` given they are returned as used.
     """
+    return _chain(image, 0.2, 1.0, 2.0, 0.1, 10.0, region, scales)
+
+
+def _chain(image, gamma, sigma0, sigma1, alpha, tau, region, scales) -> tuple[np.ndarray, tuple[float, float]]:
+    """The normalization of :func:`tan_triggs` and its two divisors."""
     if not 0 < gamma <= 1:
         raise ValueError(f"gamma must be in (0, 1], got {gamma}")
     if not alpha > 0:
