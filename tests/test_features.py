@@ -658,3 +658,11 @@ def test_cell_map_splits_each_axis_into_nearly_equal_runs():
     assert cells[:, 0].tolist() == [0, 0, 3, 3, 6, 6, 6]
     assert cells[0].tolist() == [0, 0, 0, 1, 1, 1, 2, 2, 2, 2]
     assert np.bincount(cells.ravel()).tolist() == [6, 6, 8, 6, 6, 8, 9, 9, 12]
+
+
+def test_intensity_template_size_with_a_factor():
+    assert intensity_template_size(114, 162, 0.5) == (81, 57)
+    assert intensity_template_size(114, 162) == (54, 38)  # the paper's third
+    assert intensity_template_size(17, 50, 0.25) == (13, 4)  # at least 4 pixels a side
+    with pytest.raises(ValueError, match="factor"):
+        intensity_template_size(40, 40, 0.0)

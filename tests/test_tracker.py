@@ -351,3 +351,18 @@ def test_color_and_gray_patches_sampled_together_equal_each_sampled_alone(gray_f
     X, Y = sampling_grid(states, t.config.feature_size, 1.0, prepared.origin)
     np.testing.assert_array_equal(patches.color, remap_patches(smooth(prepared.color, sigma, win), X, Y))
     np.testing.assert_array_equal(patches.raw, remap_patches(smooth(prepared.gray, sigma, win), X, Y))
+
+
+def test_intensity_factor_sets_the_intensity_template_size():
+    demo = make_demo_sequence(n_frames=3)
+    sizes = []
+    for factor in (None, 0.5):
+        t = Tracker(TrackerConfig(n_particles=30, seed=0, intensity_factor=factor))
+        t.init(demo.frames[0], demo.groundtruth[0])
+        t.update(demo.frames[1])
+        sizes.append(t._intensity_size)
+        assert t._templates.dictionaries[0].shape[0] == sizes[-1][0] * sizes[-1][1]
+    w, h = demo.groundtruth[0][2:]
+    assert sizes[1] == (int(np.floor(h / 2 + 0.5)), int(np.floor(w / 2 + 0.5))) and sizes[0] != sizes[1]
+    with pytest.raises(ValueError, match="intensity_factor"):
+        TrackerConfig(intensity_factor=-1.0)

@@ -355,7 +355,8 @@ class Tracker:
                 f"init: box {tuple(b)} is mostly outside the {shape[1]}x{shape[0]} image ({inside:.0%} inside)"
             )
         self.timings = defaultdict(float)
-        self._intensity_size = intensity_template_size(wb[2], wb[3])  # in the working frame, as the paper
+        # in the working frame, as the paper
+        self._intensity_size = intensity_template_size(wb[2], wb[3], cfg.intensity_factor)
         self._view_options: dict[str, dict[str, Any]] = {
             "color": {"grid": cfg.color_grid, "power": cfg.histogram_power},
             "hog": {"plane": cfg.hog_plane},

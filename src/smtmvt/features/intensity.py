@@ -20,13 +20,15 @@ def _round_half_up(x: float) -> int:
     return int(math.floor(x + 0.5))
 
 
-def intensity_template_size(w: float, h: float) -> tuple[int, int]:
+def intensity_template_size(w: float, h: float, factor: float | None = None) -> tuple[int, int]:
     """Size of the intensity template for an initial target of ``w x h`` pixels.
 
     Parameters
     ----------
     w, h : float
         Width and height of the initial target box, pixels (> 0).
+    factor : optional float > 0
+        Template pixels per target pixel instead of the paper's rule below.
 
     Returns
     -------
@@ -39,7 +41,10 @@ def intensity_template_size(w: float, h: float) -> tuple[int, int]:
     h = float(h)
     if not (w > 0 and h > 0) or not (math.isfinite(w) and math.isfinite(h)):
         raise ValueError(f"target size must be positive and finite, got w={w}, h={h}")
-    factor = 0.5 if min(w, h) < 20 else 1.0 / 3.0
+    if factor is None:
+        factor = 0.5 if min(w, h) < 20 else 1.0 / 3.0
+    elif not factor > 0:
+        raise ValueError(f"intensity template factor must be > 0, got {factor!r}")
     th = max(MIN_TEMPLATE_SIDE, _round_half_up(h * factor))
     tw = max(MIN_TEMPLATE_SIDE, _round_half_up(w * factor))
     return th, tw
