@@ -60,13 +60,19 @@ def least_squares_residuals(X, D, bases=None) -> np.ndarray:
     bases : optional list of K arrays from :func:`range_basis` of each ``D^k``
         (computed when omitted).
     """
+    Xs = [np.asarray(Xk, dtype=np.float64) for Xk in X]
+    return _least_squares(Xs, [np.einsum("ij,ij->j", Xk, Xk) for Xk in Xs], D, bases)
+
+
+def _least_squares(Xs, XX, D, bases) -> np.ndarray:
+    """:func:`least_squares_residuals` of float64 views ``Xs`` whose squared
+    column norms ``XX`` are at hand."""
     if bases is None:
         bases = [range_basis(Dk) for Dk in D]
-    total = np.zeros(np.asarray(X[0]).shape[1])
-    for Xk, Qk in zip(X, bases):
-        Xk = np.asarray(Xk, dtype=np.float64)
+    total = np.zeros(Xs[0].shape[1])
+    for Xk, xx, Qk in zip(Xs, XX, bases):
         proj = Qk.T @ Xk
-        total += np.einsum("ij,ij->j", Xk, Xk) - np.einsum("ij,ij->j", proj, proj)
+        total += xx - np.einsum("ij,ij->j", proj, proj)
     return np.maximum(total, 0.0)
 
 
@@ -215,5 +221,5 @@ def nonnegative_residuals(X, D, bases=None) -> np.ndarray:
     out = np.empty(n)
     ok = np.empty(n, dtype=np.bool_)
     _nnls_kernel(G, Q, XX, out, ok)
-    ls = least_squares_residuals(Xs, Ds, bases)
+    ls = _least_squares(Xs, XX, Ds, bases)
     return np.maximum(np.where(ok, out - NNLS_MARGIN * len(Xs), ls), ls)
