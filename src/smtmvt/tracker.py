@@ -401,7 +401,6 @@ class Tracker:
         self._particles = np.repeat(self._state[None], cfg.n_particles, axis=0)
         self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
         self._background = self._background_views(prepared)
-        self._frame_index = 0
         self._intensity_index = cfg.views.index("intensity") if "intensity" in cfg.views else None
         self._initialized = True
 
@@ -417,7 +416,8 @@ class Tracker:
             to_unit_range(frame, where)  # raises, naming the frame and its shape
         shape = np.shape(frame)
         size = self._plane_size(shape, plane_scale)
-        refresh = cfg.crop_refresh and (self._frame_index % cfg.crop_refresh == 0 or self._tt_divisors is None)
+        # config.crop_refresh: the whole plane (init's first call is frame 0, so the divisors are always set)
+        refresh = bool(cfg.crop_refresh) and self._frame_index % cfg.crop_refresh == 0
         if states is not None and self._crop and not refresh:
             plane_shape = (shape[0], shape[1]) if size is None else (size[1], size[0])
             reach = smooth_reach(max(self._smoothing(plane_scale))) + 1
