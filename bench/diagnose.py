@@ -10,7 +10,8 @@ it is coded like the particles but cannot change the tracker's state). Per frame
 it records:
 
 - ``overlap``: IoU of the chosen box with the ground truth;
-- ``best_particle_overlap``: the best IoU among the frame's sampled particles;
+- ``best_particle_overlap``: the best IoU among the frame's sampled particles
+  (their boxes as the tracker would report them, ``config.report_aspect``);
 - ``gt_rank``: 1 + the number of particles whose likelihood beats the ground
   truth's (1: the ground truth would have been chosen);
 - the residuals of the chosen box and of the ground truth under the current
@@ -122,7 +123,7 @@ def diagnose(seq, config: TrackerConfig, max_frames: int | None = None) -> list[
         row = dict(
             frame=i + 1,
             overlap=float(overlap_ratio(chosen[None], g[None])[0]),
-            best_particle_overlap=float(np.nanmax(overlap_ratio(detail.boxes, np.repeat(g[None], len(p), 0)))),
+            best_particle_overlap=float(np.nanmax(overlap_ratio(detail.reported_boxes, np.repeat(g[None], len(p), 0)))),
             gt_rank=int(1 + np.sum(p > p_gt)),
             gt_likelihood=p_gt,
             chosen_likelihood=float(result.score),

@@ -4,7 +4,7 @@ import cv2
 import numpy as np
 import pytest
 
-from smtmvt.geometry import REF, affine_scale, affine_to_box, box_to_affine
+from smtmvt.geometry import REF, affine_scale, affine_to_box, box_to_affine, box_with_aspect
 from smtmvt.warp import inside_fraction, sampling_grid, warp_patches
 
 
@@ -15,6 +15,23 @@ def test_box_affine_roundtrip():
     )
     np.testing.assert_allclose(affine_to_box(box_to_affine(boxes)), boxes, atol=1e-12)
     np.testing.assert_allclose(affine_to_box(box_to_affine(boxes[0])), boxes[0], atol=1e-12)
+
+
+def test_box_with_aspect_keeps_centre_and_area_and_moves_the_log_aspect():
+    boxes = np.array([[10.0, 20.0, 30.0, 60.0], [-5.0, 3.0, 12.5, 4.0]])
+    centre = lambda b: np.column_stack([b[:, 0] + (b[:, 2] - 1) / 2, b[:, 1] + (b[:, 3] - 1) / 2])  # noqa: E731
+    for fraction in (0.0, 0.25, 1.0):
+        out = box_with_aspect(boxes, 1.5, fraction)
+        np.testing.assert_allclose(centre(out), centre(boxes), atol=1e-12)
+        np.testing.assert_allclose(out[:, 2] * out[:, 3], boxes[:, 2] * boxes[:, 3], rtol=1e-12)
+        want = (1 - fraction) * np.log(boxes[:, 3] / boxes[:, 2]) + fraction * np.log(1.5)
+        np.testing.assert_allclose(np.log(out[:, 3] / out[:, 2]), want, atol=1e-12)
+    np.testing.assert_array_equal(box_with_aspect(boxes, 1.5, 0.0), boxes)
+    np.testing.assert_allclose(box_with_aspect(boxes[0], 0.5), [-5.0, 35.0, 60.0, 30.0], atol=1e-12)  # 30x60 -> 60x30
+    with pytest.raises(ValueError, match="fraction"):
+        box_with_aspect(boxes, 1.5, 1.5)
+    with pytest.raises(ValueError, match="aspect"):
+        box_with_aspect(boxes, 0.0)
 
 
 def test_affine_of_box_centre_and_scale():

@@ -27,7 +27,15 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["REF", "box_to_affine", "affine_to_box", "affine_extent", "affine_scale", "box_inside_fraction"]
+__all__ = [
+    "REF",
+    "box_to_affine",
+    "affine_to_box",
+    "affine_extent",
+    "affine_scale",
+    "box_inside_fraction",
+    "box_with_aspect",
+]
 
 #: Size of the template reference frame, in template units.
 REF = 32.0
@@ -125,3 +133,36 @@ def box_inside_fraction(box, shape) -> float:
     ix = max(0.0, min(x + w, W) - max(x, 0.0))
     iy = max(0.0, min(y + h, H) - max(y, 0.0))
     return ix * iy / (w * h) if w > 0 and h > 0 else 0.0
+
+
+def box_with_aspect(box, aspect: float, fraction: float = 1.0) -> np.ndarray:
+    """The box of the same centre and area with its aspect ratio moved toward ``aspect``.
+
+    Parameters
+    ----------
+    box : (4,) or (m, 4) array-like, ``(x, y, w, h)`` pixels, 0-based, ``w, h > 0``.
+    aspect : float > 0, the target aspect ratio ``h / w``.
+    fraction : float in [0, 1], how far the log aspect ratio moves:
+        ``log(h' / w') = (1 - fraction) log(h / w) + fraction log(aspect)``;
+        0 returns the box, 1 gives it ``aspect`` exactly.
+
+    Returns
+    -------
+    (4,) or (m, 4) float64 boxes with ``w' h' = w h`` and the centre
+    ``(x + (w - 1) / 2, y + (h - 1) / 2)`` unchanged.
+    """
+    b = np.asarray(box, dtype=np.float64)
+    single = b.ndim == 1
+    b = np.atleast_2d(b)
+    if not aspect > 0 or not 0 <= fraction <= 1:
+        raise ValueError(f"box_with_aspect: need aspect > 0 and fraction in [0, 1], got {aspect!r}, {fraction!r}")
+    x, y, w, h = b.T
+    if fraction == 0:
+        out = b.copy()
+    else:
+        log_aspect = (1.0 - fraction) * np.log(h / w) + fraction * np.log(aspect)
+        area = w * h
+        w2 = np.sqrt(area / np.exp(log_aspect))
+        h2 = np.sqrt(area * np.exp(log_aspect))
+        out = np.stack([x + (w - w2) / 2.0, y + (h - h2) / 2.0, w2, h2], axis=1)
+    return out[0] if single else out

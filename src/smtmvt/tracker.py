@@ -38,7 +38,7 @@ from .background import background_offsets, ring_states
 from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
 from .foreground import RING, box_contrast, foreground_map, foreground_model, ring_window
-from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine
+from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine, box_with_aspect
 from .likelihood import Observation, observe
 from .motion import propagate, pull_shape, resample
 from .preprocess import (
@@ -100,6 +100,9 @@ class FrameDetail:
     scale : (2,) float64 working-frame pixels per input pixel (x, y).
     best_views : the chosen particle's K views, ``(d_k,)`` float32 each (None
         when no candidate was valid).
+    reshape : ``(aspect, fraction)``, how a state's box is reported
+        (``config.report_aspect``: its aspect ratio moved ``fraction`` of the
+        way to the first box's ``aspect``, in the working frame).
     """
 
     particles: np.ndarray
@@ -108,11 +111,19 @@ class FrameDetail:
     probe_boxes: np.ndarray
     scale: np.ndarray
     best_views: list | None = None
+    reshape: tuple = (1.0, 0.0)
 
     @property
     def boxes(self) -> np.ndarray:
-        """(n, 4) boxes of the particles, 0-based pixels of the input frame."""
+        """(n, 4) boxes of the particles' states, 0-based pixels of the input frame."""
         return affine_to_box(self.particles).reshape(-1, 4) / np.tile(self.scale, 2)
+
+    @property
+    def reported_boxes(self) -> np.ndarray:
+        """(n, 4) boxes the tracker would report for each particle (:attr:`boxes`
+        reshaped as ``config.report_aspect`` says), 0-based pixels of the input frame."""
+        work = box_with_aspect(affine_to_box(self.particles).reshape(-1, 4), *self.reshape)
+        return work / np.tile(self.scale, 2)
 
     @property
     def probe_likelihood(self) -> np.ndarray:
@@ -573,7 +584,7 @@ class Tracker:
             self._particles = np.repeat(self._state[None], cfg.n_particles, axis=0)
             self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
             result = TrackResult(self._box, 0.0, float("inf"), True, None, self._frame_index)
-            return result, FrameDetail(particles, obs, None, probe_boxes, self._scale)
+            return result, FrameDetail(particles, obs, None, probe_boxes, self._scale, None, self._reshape())
 
         best = int(np.argmax(p))
         with self._timed("update"):
@@ -598,7 +609,7 @@ class Tracker:
         self._expand = self._search_expand(float(obs.residual[best]))
         self._state = state
         self._work_box = tuple(float(v) for v in affine_to_box(self._state))
-        self._box = tuple(float(v) for v in self._from_work(self._work_box))
+        self._box = tuple(float(v) for v in self._from_work(self._reported(self._work_box)))
         self._particles, self._weights = particles, p
         self._background = self._background_views(prepared, plane_scale)
         result = TrackResult(
@@ -609,7 +620,20 @@ class Tracker:
             template_replaced=decision.replaced,
             frame_index=self._frame_index,
         )
-        return result, FrameDetail(particles, obs, best, probe_boxes, self._scale, [Xk[:, best].copy() for Xk in X])
+        best_views = [Xk[:, best].copy() for Xk in X]
+        return result, FrameDetail(particles, obs, best, probe_boxes, self._scale, best_views, self._reshape())
+
+    def _reshape(self) -> tuple[float, float]:
+        """``(aspect, fraction)`` of the reported boxes: the first box's aspect
+        ratio ``h / w`` (working frame) and ``config.report_aspect``."""
+        first = affine_to_box(self._init_state)
+        return float(first[3] / first[2]), float(self.config.report_aspect)
+
+    def _reported(self, work_box) -> np.ndarray:
+        """The box reported for the state's box ``work_box`` (working frame): its
+        aspect ratio moved ``config.report_aspect`` of the way (in log) to the
+        first box's, at the same centre and area (:func:`box_with_aspect`)."""
+        return box_with_aspect(work_box, *self._reshape())
 
     def _search_expand(self, residual: float) -> float:
         """Factor on the next frame's translation std (``config.search_expand``):
