@@ -170,74 +170,102 @@ def observe(
     """
     timed = timed or _untimed
     n = X[0].shape[1]
-    K, N = len(D), D[0].shape[1]
     valid = np.ones(n, dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
     always = np.zeros(n, dtype=bool) if always is None else np.asarray(always, dtype=bool)
     shift = np.zeros(n) if offset is None else np.asarray(offset, dtype=np.float64).reshape(n)
-    K0 = len(X)
-    X = list(X) + [np.zeros((Dk.shape[0], n), dtype=np.asarray(X[0]).dtype) for Dk in D[K0:]]
-    have = np.full(n, deferred is None or K0 == K)  # candidates whose every view is at hand
-
-    if bases is None:
-        bases = [range_basis(Dk) for Dk in D]
-
-    def lower_bounds(Xs, Ds, Bs):
-        return nonnegative_residuals(Xs, Ds, Bs) if eps > 0 else least_squares_residuals(Xs, Ds, Bs)
-
+    coding = _Coding(X, D, code, eps, timed, deferred, bases)
+    if eps <= 0 or not valid.any():
+        coding.run(valid | always)
+    else:
+        _code_bounded(coding, valid, always, shift, alpha, eps)
     with timed("likelihood"):
-        bound = lower_bounds(X[:K0], D[:K0], bases[:K0])
-    coded = np.zeros(n, dtype=bool)
-    C = np.zeros((K, N, n))
-    E = [np.zeros((Dk.shape[0], n)) for Dk in D]
-    residual = np.full(n, np.nan)
+        p = likelihoods(coding.residual + shift, alpha, valid | always)
+    return Observation(
+        likelihood=p,
+        residual=coding.residual,
+        bound=coding.bound,
+        coded=coding.coded,
+        C=coding.C,
+        E=coding.E,
+        views=coding.X,
+        complete=coding.have,
+    )
 
-    def complete(mask):
+
+def _code_bounded(coding: _Coding, valid, always, shift, alpha: float, eps: float) -> None:
+    """The rule of the module docstring: code the ``FIRST_PASS`` candidates of
+    smallest bound (and ``always``), then every candidate outside the tail of
+    largest bounds whose likelihood bounds sum to at most ``eps`` times the best
+    likelihood found, completing the deferred views until that tail is stable."""
+    n = len(valid)
+    bound = coding.bound
+    order = np.flatnonzero(valid)[np.argsort((bound + shift)[valid], kind="stable")]
+    first = np.zeros(n, dtype=bool)
+    first[order[:FIRST_PASS]] = True
+    coding.run(first | always)
+    best = np.nanmin(np.where(valid & coding.coded, coding.residual + shift, np.nan))
+    while True:
+        # bounds relative to the best likelihood: u_i / p* = exp(-alpha (b_i - r*))
+        order = np.flatnonzero(valid)[np.argsort((bound + shift)[valid], kind="stable")]
+        rest = order[~coding.coded[order]]
+        u = np.exp(-alpha * (bound[rest] + shift[rest] - best))
+        skipped_mass = np.cumsum(u[::-1])[::-1]  # sum of the bounds from each position to the end
+        needed = np.isin(np.arange(n), rest[skipped_mass > eps])
+        if coding.have[needed].all():
+            break
+        coding.complete(needed)  # their bounds rise: take the tail again
+    coding.run(needed)
+
+
+class _Coding:
+    """What :func:`observe` fills in for the n candidates (views, bounds, codes,
+    residuals), and its two steps: completing the deferred views of some
+    candidates and coding some candidates."""
+
+    def __init__(self, X, D, code: Callable, eps: float, timed, deferred, bases) -> None:
+        n = X[0].shape[1]
+        K, N = len(D), D[0].shape[1]
+        self.K0 = len(X)
+        self.D, self.code, self.eps, self.timed, self.deferred = D, code, eps, timed, deferred
+        self.X = list(X) + [np.zeros((Dk.shape[0], n), dtype=np.asarray(X[0]).dtype) for Dk in D[self.K0 :]]
+        self.have = np.full(n, deferred is None or self.K0 == K)  # candidates whose every view is at hand
+        self.bases = [range_basis(Dk) for Dk in D] if bases is None else bases
+        with timed("likelihood"):
+            self.bound = self._lower_bounds(self.X[: self.K0], D[: self.K0], self.bases[: self.K0])
+        self.coded = np.zeros(n, dtype=bool)
+        self.C = np.zeros((K, N, n))
+        self.E = [np.zeros((Dk.shape[0], n)) for Dk in D]
+        self.residual = np.full(n, np.nan)
+
+    def _lower_bounds(self, Xs, Ds, Bs) -> np.ndarray:
+        return nonnegative_residuals(Xs, Ds, Bs) if self.eps > 0 else least_squares_residuals(Xs, Ds, Bs)
+
+    def complete(self, mask) -> None:
         """Compute the deferred views of the candidates in ``mask`` lacking them."""
-        idx = np.flatnonzero(mask & ~have)
+        idx = np.flatnonzero(mask & ~self.have)
         if idx.size == 0:
             return
-        with timed("features"):
-            late = deferred(idx)
-        with timed("likelihood"):
+        K0 = self.K0
+        with self.timed("features"):
+            late = self.deferred(idx)
+        with self.timed("likelihood"):
             for k, Vk in enumerate(late, start=K0):
-                X[k][:, idx] = Vk
-            bound[idx] += lower_bounds(list(late), D[K0:], bases[K0:])
-            have[idx] = True
+                self.X[k][:, idx] = Vk
+            self.bound[idx] += self._lower_bounds(list(late), self.D[K0:], self.bases[K0:])
+            self.have[idx] = True
 
-    def run(mask):
+    def run(self, mask) -> None:
+        """Code the candidates in ``mask`` (their deferred views completed first)."""
         idx = np.flatnonzero(mask)
         if idx.size == 0:
             return
-        complete(mask)
-        Xs = [Xk[:, idx] for Xk in X]
-        with timed("solve"):
-            Cs, Es = code(Xs, D)
-        with timed("likelihood"):
-            C[:, :, idx] = Cs
-            for k in range(K):
-                E[k][:, idx] = Es[k]
-            residual[idx] = reconstruction_residual(Xs, D, Cs)
-            coded[idx] = True
-
-    if eps <= 0 or not valid.any():
-        run(valid | always)
-    else:
-        order = np.flatnonzero(valid)[np.argsort((bound + shift)[valid], kind="stable")]
-        first = np.zeros(n, dtype=bool)
-        first[order[:FIRST_PASS]] = True
-        run(first | always)
-        best = np.nanmin(np.where(valid & coded, residual + shift, np.nan))
-        while True:
-            # bounds relative to the best likelihood: u_i / p* = exp(-alpha (b_i - r*))
-            order = np.flatnonzero(valid)[np.argsort((bound + shift)[valid], kind="stable")]
-            rest = order[~coded[order]]
-            u = np.exp(-alpha * (bound[rest] + shift[rest] - best))
-            skipped_mass = np.cumsum(u[::-1])[::-1]  # sum of the bounds from each position to the end
-            needed = np.isin(np.arange(n), rest[skipped_mass > eps])
-            if have[needed].all():
-                break
-            complete(needed)  # their bounds rise: take the tail again
-        run(needed)
-    with timed("likelihood"):
-        p = likelihoods(residual + shift, alpha, valid | always)
-    return Observation(likelihood=p, residual=residual, bound=bound, coded=coded, C=C, E=E, views=X, complete=have)
+        self.complete(mask)
+        Xs = [Xk[:, idx] for Xk in self.X]
+        with self.timed("solve"):
+            Cs, Es = self.code(Xs, self.D)
+        with self.timed("likelihood"):
+            self.C[:, :, idx] = Cs
+            for k in range(len(self.D)):
+                self.E[k][:, idx] = Es[k]
+            self.residual[idx] = reconstruction_residual(Xs, self.D, Cs)
+            self.coded[idx] = True

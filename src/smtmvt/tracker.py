@@ -489,12 +489,30 @@ class Tracker:
             return self._update(frame, probes)
 
     def _update(self, frame: np.ndarray, probes=None):
+        """One frame: particles -> planes -> views -> codes -> likelihoods -> state."""
         if not self._initialized:
             raise RuntimeError("update called before init")
-        cfg = self.config
         self._frame_index += 1
         rng_state = self._rng.bit_generator.state
         plane_scale = self._plane_scale()
+        particles = self._propagate()
+        probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
+        probe_states = box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)
+        with self._timed("preprocess"):
+            try:
+                prepared, probe_planes = self._prepare_candidates(frame, particles, probe_states, plane_scale)
+            except Exception:
+                # a frame that cannot be read leaves the tracker as it was
+                self._rng.bit_generator.state = rng_state
+                self._frame_index -= 1
+                raise
+        obs, X = self._observe(prepared, probe_planes, particles, probe_states, plane_scale)
+        return self._decide(particles, obs, X, probe_boxes, prepared, plane_scale)
+
+    def _propagate(self) -> np.ndarray:
+        """This frame's ``(n, 6)`` particles: the last frame's resampled by their
+        likelihoods, then moved by the random walk (and the velocity term)."""
+        cfg = self.config
         with self._timed("motion"):
             particles = resample(self._particles, self._weights, cfg.n_particles)
             if cfg.shape_pull:
@@ -505,47 +523,36 @@ class Tracker:
             std = cfg.affine_std
             if self._expand > 1.0:  # config.search_expand: a wider search after a poorly explained frame
                 std = (*std[:4], std[4] * self._expand, std[5] * self._expand)
-            particles = propagate(particles, std, self._rng, shift, self._spread, cfg.translation_power, cfg.aspect_std)
+            return propagate(particles, std, self._rng, shift, self._spread, cfg.translation_power, cfg.aspect_std)
+
+    def _prepare_candidates(self, frame, particles, probe_states, plane_scale: float):
+        """The frame's planes for the particles, and those for the probes (the
+        same planes, or on a crop the probes' own, so that they do not move the
+        particles' window)."""
+        where = f"frame {self._frame_index}"
+        prepared = self._prepare(frame, where, self._channels, plane_scale, particles)
+        probe_planes = prepared
+        if len(probe_states) and prepared.full_shape is not None:
+            probe_planes = self._prepare(frame, where, self._channels, plane_scale, probe_states)
+        return prepared, probe_planes
+
+    def _observe(self, prepared, probe_planes, particles, probe_states, plane_scale: float):
+        """Views, codes and likelihoods of the particles followed by the probes:
+        ``(Observation, X)``, ``X`` the K views ``(d_k, n + m)`` float32 (a
+        deferred view's columns zero where it was not computed)."""
+        cfg = self.config
         n = len(particles)
-        probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
-        probe_states = box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)
         states = np.concatenate([particles, probe_states])
-        with self._timed("preprocess"):
-            try:
-                where = f"frame {self._frame_index}"
-                prepared = probe_planes = self._prepare(frame, where, self._channels, plane_scale, particles)
-                if len(probe_states) and prepared.full_shape is not None:
-                    # a crop: the probes' own, so that they do not move the particles' window
-                    probe_planes = self._prepare(frame, where, self._channels, plane_scale, probe_states)
-            except Exception:
-                # a frame that cannot be read leaves the tracker as it was
-                self._rng.bit_generator.state = rng_state
-                self._frame_index -= 1
-                raise
-            full = prepared.plane_shape
-            work_shape = (int(round(full[0] / plane_scale)), int(round(full[1] / plane_scale)))
+        full = prepared.plane_shape
+        work_shape = (int(round(full[0] / plane_scale)), int(round(full[1] / plane_scale)))
         patches = self._patches(prepared, particles, plane_scale)
         if len(probe_states):
             patches = patches.joined(self._patches(probe_planes, probe_states, plane_scale))
         # views computed for every candidate, and the views deferred (likelihood.observe)
         now, later = cfg.views[: self._n_first], cfg.views[self._n_first :]
         X = self._extract(patches, now)
-        offset = None
         with self._timed("likelihood"):
-            # (a term view is never deferred while a term is on: TrackerConfig checks it)
-            X_terms = self._terms_of(X) if cfg.anchor_weight or cfg.background_weight else []
-            if self._background is not None and X_terms:
-                offset = background_offsets(X_terms, self._background, cfg.background_weight, cfg.background_measure)
-            if cfg.anchor_weight and X_terms:
-                first = self._terms_of([Dk[:, 0] for Dk in self._templates.dictionaries])
-                anchor = anchor_offsets(X_terms, first, cfg.anchor_weight)
-                offset = anchor if offset is None else offset + anchor
-            if cfg.foreground_weight:
-                contrast = self._contrast(prepared, particles, plane_scale)
-                if len(probe_states):
-                    contrast = np.concatenate([contrast, self._contrast(probe_planes, probe_states, plane_scale)])
-                fg = cfg.foreground_weight * (1.0 - contrast)
-                offset = fg if offset is None else offset + fg
+            offset = self._offsets(X, prepared, probe_planes, particles, probe_states, plane_scale)
         # A candidate mostly outside the image is not a valid observation.
         with self._timed("motion"):
             valid = inside_fraction(states, work_shape) >= 0.5
@@ -576,16 +583,40 @@ class Tracker:
             bases=self._bases,
             offset=offset,
         )
-        X = X + X_later
-        p = obs.likelihood[:n]
+        return obs, X + X_later
 
+    def _offsets(self, X, prepared, probe_planes, particles, probe_states, plane_scale: float):
+        """Each candidate's terms added to its residual (background, anchor,
+        foreground; ``(n + m,)``), or None when all are off."""
+        cfg = self.config
+        offset = None
+        # (a term view is never deferred while a term is on: TrackerConfig checks it)
+        X_terms = self._terms_of(X) if cfg.anchor_weight or cfg.background_weight else []
+        if self._background is not None and X_terms:
+            offset = background_offsets(X_terms, self._background, cfg.background_weight, cfg.background_measure)
+        if cfg.anchor_weight and X_terms:
+            first = self._terms_of([Dk[:, 0] for Dk in self._templates.dictionaries])
+            anchor = anchor_offsets(X_terms, first, cfg.anchor_weight)
+            offset = anchor if offset is None else offset + anchor
+        if cfg.foreground_weight:
+            contrast = self._contrast(prepared, particles, plane_scale)
+            if len(probe_states):
+                contrast = np.concatenate([contrast, self._contrast(probe_planes, probe_states, plane_scale)])
+            fg = cfg.foreground_weight * (1.0 - contrast)
+            offset = fg if offset is None else offset + fg
+        return offset
+
+    def _decide(self, particles, obs, X, probe_boxes, prepared, plane_scale: float):
+        """The state from the likelihoods: the best particle (or their mean),
+        the template update and the next frame's resampling weights."""
+        cfg = self.config
+        p = obs.likelihood[: len(particles)]
         if not np.any(p > 0):
             # Nothing explains the frame: keep the previous state (no NaN ever leaves).
             self._particles = np.repeat(self._state[None], cfg.n_particles, axis=0)
             self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
             result = TrackResult(self._box, 0.0, float("inf"), True, None, self._frame_index)
             return result, FrameDetail(particles, obs, None, probe_boxes, self._scale, None, self._reshape())
-
         best = int(np.argmax(p))
         with self._timed("update"):
             decision = self._templates.update(
@@ -600,11 +631,7 @@ class Tracker:
             )
         if decision.replaced is not None:
             self._bases = None  # a dictionary column changed: its range bases are recomputed
-        if cfg.estimate == "mean":
-            w = p / p.sum()
-            state = w @ particles
-        else:
-            state = particles[best].copy()
+        state = (p / p.sum()) @ particles if cfg.estimate == "mean" else particles[best].copy()
         self._velocity = state[4:] - self._state[4:]
         self._expand = self._search_expand(float(obs.residual[best]))
         self._state = state
