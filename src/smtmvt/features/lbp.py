@@ -58,9 +58,9 @@ def _lbp_kernel(images, rp, cp, pad, out):  # pragma: no cover - compiled (teste
     P = rp.shape[0]
     buf = np.zeros((h + 2 * pad, w + 2 * pad))
     value = np.empty((P, w))
-    ones = np.empty(w, np.uint8)
-    changes = np.empty(w, np.uint8)
-    prev = np.empty(w, np.bool_)
+    ones = np.empty(w, np.int64)
+    changes = np.empty(w, np.int64)
+    prev = np.empty(w, np.int64)
     # Integer parts of the column offsets, and the interpolation weight of each
     # column as skimage computes it: (c + cp) - floor(c + cp), exact per column.
     # (floor(c + cp) == c + floor(cp): cp has 5 decimals, so c + cp never rounds
@@ -74,41 +74,55 @@ def _lbp_kernel(images, rp, cp, pad, out):  # pragma: no cover - compiled (teste
         for c in range(w):
             x = c + cp[i]
             dcs[i, c] = x - math.floor(x)
+    # The loops read and write 1-d row slices (contiguous, with their offsets
+    # taken once per row): about twice as fast as the same arithmetic indexed
+    # in 2-d, which the compiler does not vectorize as well.
     for k in range(n):
+        img = images[k]
         for r in range(h):
+            brow = buf[r + pad]
+            irow = img[r]
             for c in range(w):
-                buf[r + pad, c + pad] = images[k, r, c]
+                brow[c + pad] = irow[c]
         for r in range(h):
+            centre = buf[r + pad][pad : pad + w]
             for i in range(P):
                 y = r + rp[i]
                 dr = y - math.floor(y)
-                r_lo = int(math.floor(y)) + pad
-                r_hi = int(math.ceil(y)) + pad
-                o_lo = c_lo[i]
-                o_hi = c_hi[i]
-                if dr == 0.0 and o_lo == o_hi:
+                lo_row = buf[int(math.floor(y)) + pad]
+                hi_row = buf[int(math.ceil(y)) + pad]
+                a_lo = lo_row[c_lo[i] : c_lo[i] + w]
+                a_hi = lo_row[c_hi[i] : c_hi[i] + w]
+                b_lo = hi_row[c_lo[i] : c_lo[i] + w]
+                b_hi = hi_row[c_hi[i] : c_hi[i] + w]
+                v = value[i]
+                dci = dcs[i]
+                if dr == 0.0 and c_lo[i] == c_hi[i]:
                     # integer offset: skimage's formula returns the pixel exactly
                     for c in range(w):
-                        value[i, c] = buf[r_lo, c + o_lo]
+                        v[c] = a_lo[c]
                 else:
                     for c in range(w):
-                        dc = dcs[i, c]
-                        top = (1 - dc) * buf[r_lo, c + o_lo] + dc * buf[r_lo, c + o_hi]
-                        bottom = (1 - dc) * buf[r_hi, c + o_lo] + dc * buf[r_hi, c + o_hi]
-                        value[i, c] = (1 - dr) * top + dr * bottom
+                        dc = dci[c]
+                        top = (1 - dc) * a_lo[c] + dc * a_hi[c]
+                        bottom = (1 - dc) * b_lo[c] + dc * b_hi[c]
+                        v[c] = (1 - dr) * top + dr * bottom
+            v0 = value[0]
             for c in range(w):
-                bit = value[0, c] >= buf[r + pad, c + pad]
+                bit = 1 if v0[c] >= centre[c] else 0
                 ones[c] = bit
                 prev[c] = bit
                 changes[c] = 0
             for i in range(1, P):
+                vi = value[i]
                 for c in range(w):
-                    bit = value[i, c] >= buf[r + pad, c + pad]
+                    bit = 1 if vi[c] >= centre[c] else 0
                     ones[c] += bit
-                    changes[c] += bit != prev[c]
+                    changes[c] += bit ^ prev[c]
                     prev[c] = bit
+            orow = out[k, r]
             for c in range(w):
-                out[k, r, c] = ones[c] if changes[c] <= 2 else P + 1
+                orow[c] = ones[c] if changes[c] <= 2 else P + 1
     return out
 
 
@@ -133,7 +147,8 @@ def lbp_codes(images: np.ndarray, P: int = LBP_P, R: float = LBP_R) -> np.ndarra
     -----
     A compiled (numba) loop, about 3x faster than the vectorized numpy version
     it replaced (400 patches of 32x32: 6 ms against 17 ms of CPU time on the
-    2-core development machine). The bilinear interpolation is evaluated with
+    2-core development machine), and written on row slices since stop 21
+    (60 patches: 0.68 against 1.22 ms, the same codes). The bilinear interpolation is evaluated with
     skimage's operations in skimage's order, in float64, so the values are
     bit-identical; ``value - centre >= 0`` is evaluated as ``value >= centre``,
     the same test for finite doubles (with gradual underflow, ``a - b == 0``
