@@ -606,6 +606,19 @@ def test_histogram_power_raises_the_color_and_lbp_histograms(gray_patches):
             color_view(patches, power=bad)
 
 
+def test_histogram_square_root_equals_the_power_one_half_bit_for_bit():
+    """power 0.5 is taken by np.sqrt (faster): the values of np.power, edges and
+    subnormals included; other powers are np.power's."""
+    from smtmvt.features.color import histogram_power
+
+    rng = np.random.default_rng(4)
+    tiny = np.float32(np.finfo(np.float32).smallest_subnormal)
+    h = np.concatenate([rng.random(100_000, dtype=np.float32), [0.0, 1.0, tiny, 1e-38, 0.5, 0.25]]).astype(np.float32)
+    assert_array_equal(histogram_power(h, 0.5), np.power(h, np.float32(0.5), dtype=np.float32))
+    assert histogram_power(h, 0.5).dtype == np.float32
+    assert_array_equal(histogram_power(h, 0.3), np.power(h, np.float32(0.3), dtype=np.float32))
+
+
 def test_histogram_power_is_a_checked_tracker_option():
     from smtmvt import TrackerConfig
 
