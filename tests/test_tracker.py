@@ -405,3 +405,40 @@ def test_intensity_factor_sets_the_intensity_template_size():
     assert sizes[1] == (int(np.floor(h / 2 + 0.5)), int(np.floor(w / 2 + 0.5))) and sizes[0] != sizes[1]
     with pytest.raises(ValueError, match="intensity_factor"):
         TrackerConfig(intensity_factor=-1.0)
+
+
+def test_occlusion_ratio_flags_a_residual_above_the_recent_median():
+    """config.occlusion_ratio: from the fifth frame on, a chosen residual (with
+    its terms) above the ratio times the median of the previous 20 frames' is
+    flagged; None never flags."""
+    from smtmvt.templates import OCCLUSION_WINDOW
+
+    demo = make_demo_sequence(n_frames=1)
+    t = Tracker(TrackerConfig(n_particles=20, occlusion_ratio=1.3))
+    t.init(demo.frames[0], demo.groundtruth[0])
+    assert not any(t._unusual(v) for v in (1.0, 9.0, 1.0, 1.0))  # fewer than four frames before each
+    assert not t._unusual(1.29)  # median of (1, 9, 1, 1) is 1
+    assert t._unusual(1.31)
+    for _ in range(OCCLUSION_WINDOW):
+        t._unusual(2.0)
+    assert not t._unusual(2.5)  # only the last 20 frames count: their median is 2
+    assert t._unusual(2.7)
+    off = Tracker(TrackerConfig(n_particles=20))
+    off.init(demo.frames[0], demo.groundtruth[0])
+    assert not any(off._unusual(v) for v in (1.0, 1.0, 1.0, 1.0, 100.0))
+    with pytest.raises(ValueError, match="occlusion_ratio"):
+        TrackerConfig(occlusion_ratio=0.5)
+
+
+def test_occlusion_ratio_stops_replacements_on_the_flagged_frames():
+    """On the demo with a ratio of 1 (every frame above its recent median is
+    flagged), every flagged frame and the four after it replace no template."""
+    demo = make_demo_sequence(n_frames=40)
+    t = Tracker(TrackerConfig(n_particles=60, seed=0, occlusion_ratio=1.0, update_angle=20.0))
+    t.init(demo.frames[0], demo.groundtruth[0])
+    results = [t.update(f) for f in demo.frames[1:]]
+    flagged = [i for i, r in enumerate(results) if r.occluded]
+    replaced = [i for i, r in enumerate(results) if r.template_replaced is not None]
+    assert flagged and replaced  # both happen with these settings
+    blocked = {i + k for i in flagged for k in range(5)}
+    assert not blocked & set(replaced)
