@@ -348,48 +348,32 @@ def test_search_expand_widens_the_translation_of_the_next_frames_particles(demo)
     np.testing.assert_array_equal(p1[:, :4], p3[:, :4])
 
 
-@pytest.mark.parametrize("color_antialias", [None, 1.5])
 @pytest.mark.parametrize("gray_frames", [False, True])
-def test_color_and_gray_patches_sampled_together_equal_each_sampled_alone(gray_frames, color_antialias):
+def test_color_and_gray_patches_sampled_together_equal_each_sampled_alone(gray_frames):
     """On cropped planes the tracker samples the color channels and the gray
     plane as one 4-channel plane (a gray frame's one plane once): bit for bit
-    the patches of smoothing and sampling each plane alone. With its own blur
-    (``color_antialias``) the color plane is smoothed by its own sigma, the
-    gray plane still by the feature patches'."""
+    the patches of smoothing and sampling each plane alone."""
     from smtmvt.motion import propagate
     from smtmvt.preprocess import sample_window, smooth
     from smtmvt.warp import remap_patches, sampling_grid
 
     demo = make_demo_sequence(n_frames=2)
     frames = [f.mean(axis=2).astype(np.uint8) if gray_frames else f for f in demo.frames]
-    t = Tracker(TrackerConfig(n_particles=80, seed=1, crop_planes=True, color_antialias=color_antialias))
+    t = Tracker(TrackerConfig(n_particles=80, seed=1, crop_planes=True))
     t.init(frames[0], demo.groundtruth[0])
     states = propagate(np.repeat(t._state[None], 80, axis=0), t.config.affine_std, np.random.default_rng(0))
     t._frame_index = 1  # not a frame of config.crop_refresh's whole planes
     prepared = t._prepare(frames[1], "f", t._channels, 1.0, states)
     assert prepared.color.shape[2] == (1 if gray_frames else 3) and prepared.full_shape is not None
     patches = t._patches(prepared, states)
-    _, sigma, sigma_c = t._smoothing(1.0)
+    _, sigma, _ = t._smoothing(1.0)
     assert sigma > 1  # the anti-aliasing blur is on
-    assert sigma_c == pytest.approx(sigma * (color_antialias or t.config.antialias) / t.config.antialias)
     x0, y0, x1, y1 = t._plane_extent(states, 1.0)
     ox, oy = prepared.origin
     win = sample_window((x0 - ox, y0 - oy, x1 - ox, y1 - oy), prepared.shape)
     X, Y = sampling_grid(states, t.config.feature_size, 1.0, prepared.origin)
-    np.testing.assert_array_equal(patches.color, remap_patches(smooth(prepared.color, sigma_c, win), X, Y))
+    np.testing.assert_array_equal(patches.color, remap_patches(smooth(prepared.color, sigma, win), X, Y))
     np.testing.assert_array_equal(patches.raw, remap_patches(smooth(prepared.gray, sigma, win), X, Y))
-
-
-def test_color_antialias_none_is_antialias_and_negative_is_rejected():
-    demo = make_demo_sequence(n_frames=2)
-    sigmas = []
-    for color_antialias in (None, 0.7):
-        t = Tracker(TrackerConfig(n_particles=20, seed=0, antialias=0.7, color_antialias=color_antialias))
-        t.init(demo.frames[0], demo.groundtruth[0])
-        sigmas.append(t._smoothing(1.0))
-    assert sigmas[0] == sigmas[1]
-    with pytest.raises(ValueError, match="color_antialias"):
-        TrackerConfig(color_antialias=-1.0)
 
 
 def test_intensity_factor_sets_the_intensity_template_size():

@@ -753,13 +753,6 @@ class TrackerConfig:
         against 0.623, though CarDark alone gains 0.56 -> 0.82 (note [18]);
         1.5 gives 0.623 against 0.621 over 9 seeds and 2 gives 0.588 on seeds
         0-2 (stop 20, note [24]): 1 stays.
-    color_antialias : float or None
-        The color patches' blur, as ``antialias`` is for the others (a
-        multiple of their sampling step); None: ``antialias``. The color
-        view's histograms, unlike the intensity, HOG and LBP views, read no
-        edges, so more blur costs it little of what it measures and takes off
-        what a shift of a pixel or two moves between its cells (note [24],
-        [25]).
     hog_plane, lbp_plane : str
         Plane the HOG and the LBP views are computed on: ``"tan_triggs"`` (the
         paper: every view after the illumination normalization) or ``"gray"``
@@ -843,7 +836,6 @@ class TrackerConfig:
     crop_context: float = 3.0
     crop_refresh: int = 10
     antialias: float = 1.0
-    color_antialias: float | None = None
     hog_plane: str = "gray"
     lbp_plane: str = "gray"
     color_grid: int = 2
@@ -871,7 +863,6 @@ class TrackerConfig:
             "prune_eps": 0 <= self.prune_eps < 1,
             "frame_size": self.frame_size is None or (len(self.frame_size) == 2 and min(self.frame_size) >= 16),
             "antialias": self.antialias >= 0,
-            "color_antialias": self.color_antialias is None or self.color_antialias >= 0,
             "occlusion_ratio": self.occlusion_ratio is None or self.occlusion_ratio >= 1,
             "hog_plane": self.hog_plane in ("tan_triggs", "gray"),
             "lbp_plane": self.lbp_plane in ("tan_triggs", "gray"),
@@ -983,7 +974,6 @@ class TrackerConfig:
             crop_context=3.0,
             crop_refresh=0,
             antialias=0.0,
-            color_antialias=None,
             hog_plane="tan_triggs",
             lbp_plane="tan_triggs",
             color_grid=1,

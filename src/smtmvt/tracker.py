@@ -206,13 +206,8 @@ class Tracker:
             raw: np.ndarray | None
             # sampled together on a crop only: on a whole plane the whole-plane merge and
             # smoothing output cost more than the 4-channel sampling saves (bench/README.md)
-            if (
-                self._needs_raw
-                and cs == fs
-                and frame.full_shape is not None
-                and (sig_c == sig_f or frame.color.shape[2] == 3)
-            ):
-                color, raw = self._color_and_raw(frame, sig_c, sig_f, win, X, Y)
+            if self._needs_raw and cs == fs and sig_c == sig_f and frame.full_shape is not None:
+                color, raw = self._color_and_raw(frame, sig_f, win, X, Y)
             else:
                 XC, YC = (X, Y) if cs == fs else grid(cs)
                 color = remap_patches(smooth(frame.color, sig_c, win), XC, YC).reshape(len(params), cs[0], cs[1], -1)
@@ -221,27 +216,19 @@ class Tracker:
         return patches
 
     @staticmethod
-    def _color_and_raw(frame: PreparedFrame, sig_c: float, sig_f: float, win, X, Y) -> tuple[np.ndarray, np.ndarray]:
+    def _color_and_raw(frame: PreparedFrame, sigma: float, win, X, Y) -> tuple[np.ndarray, np.ndarray]:
         """The color ``(n, fh, fw, C)`` and raw gray ``(n, fh, fw)`` patches on one
-        grid, the color plane smoothed by ``sig_c`` and the gray one by ``sig_f``,
-        sampled together: a gray frame's color plane is its gray plane, sampled
-        once (``sig_c == sig_f`` only); an RGB frame's three channels and its
-        gray plane are sampled as one 4-channel plane (OpenCV samples 4
+        grid and smoothing, sampled together: a gray frame's color plane is its
+        gray plane, sampled once; an RGB frame's three channels and its gray
+        plane are smoothed and sampled as one 4-channel plane (OpenCV samples 4
         channels in about the time of 1, with the same values as each channel
-        alone), smoothed as one where the sigmas agree, then split by OpenCV
-        (numpy's copy of a 3-of-4-channel view costs more than the sampling
-        saves)."""
+        alone), then split by OpenCV (numpy's copy of a 3-of-4-channel view
+        costs more than the sampling saves)."""
         if frame.color.shape[2] == 1:  # prepare_frame: a gray frame's color plane is its gray plane
-            color = remap_patches(smooth(frame.color, sig_f, win), X, Y)
+            color = remap_patches(smooth(frame.color, sigma, win), X, Y)
             return color, np.ascontiguousarray(color[..., 0])
-        if sig_c == sig_f:
-            plane = smooth(
-                cv2.merge([frame.color[..., 0], frame.color[..., 1], frame.color[..., 2], frame.gray]), sig_f, win
-            )
-        else:
-            rgb = smooth(frame.color, sig_c, win)
-            plane = cv2.merge([rgb[..., 0], rgb[..., 1], rgb[..., 2], smooth(frame.gray, sig_f, win)])
-        both = remap_patches(plane, X, Y)
+        plane = cv2.merge([frame.color[..., 0], frame.color[..., 1], frame.color[..., 2], frame.gray])
+        both = remap_patches(smooth(plane, sigma, win), X, Y)
         n, ph, pw, _ = both.shape
         pixels = both.reshape(n * ph, pw, 4)
         color = cv2.cvtColor(pixels, cv2.COLOR_RGBA2RGB).reshape(n, ph, pw, 3)
@@ -249,8 +236,7 @@ class Tracker:
 
     def _smoothing(self, plane_scale: float) -> tuple[float, float, float]:
         """Anti-aliasing sigmas (plane pixels) of the intensity, feature-size and
-        color patches: ``config.antialias`` (the color's ``config.color_antialias``
-        where set) times the current target's sampling step on each."""
+        color patches: ``config.antialias`` times the current target's sampling step."""
         cfg = self.config
         fs = cfg.feature_size
         cs = cfg.color_size or fs
@@ -260,8 +246,8 @@ class Tracker:
             max(w / fs[1], h / fs[0]),
             max(w / cs[1], h / cs[0]),
         )
-        color = cfg.antialias if cfg.color_antialias is None else cfg.color_antialias
-        return cfg.antialias * steps[0], cfg.antialias * steps[1], color * steps[2]
+        sig_i, sig_f, sig_c = (cfg.antialias * step for step in steps)
+        return sig_i, sig_f, sig_c
 
     def _contrast(self, frame: PreparedFrame, states: np.ndarray, plane_scale: float) -> np.ndarray:
         """Foreground contrast (:func:`smtmvt.foreground.box_contrast`) of each
