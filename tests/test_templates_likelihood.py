@@ -68,19 +68,6 @@ def test_occlusion_suspends_updates_for_five_frames():
     assert ts.update([far, far], c, clean, update_angle=30, occlusion_fraction=0.25).replaced is not None
 
 
-def test_a_flagged_frame_is_occluded_whatever_e_says():
-    ts = _templates()
-    far = _unit(np.ones(6)).astype(np.float32)
-    c = np.zeros((2, 4))
-    c[:, 1] = 0.2
-    clean = [np.zeros(6), np.zeros(6)]
-    d = ts.update([far, far], c, clean, update_angle=30, occlusion_fraction=0.25, flagged=True)
-    assert d.occluded and d.occlusion == 0.0 and d.replaced is None
-    for _ in range(4):
-        assert ts.update([far, far], c, clean, update_angle=30, occlusion_fraction=0.25).replaced is None
-    assert ts.update([far, far], c, clean, update_angle=30, occlusion_fraction=0.25).replaced is not None
-
-
 def test_anchor_check_blocks_a_replacement_far_from_the_first_template():
     far = _unit(np.r_[1.0, -1.0, 1.0, -1.0, 1.0, -1.0]).astype(np.float32)
     c = np.zeros((2, 4))

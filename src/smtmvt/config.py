@@ -685,18 +685,6 @@ class TrackerConfig:
     occlusion_fraction : float
         Fraction of the intensity template flagged by E above which the frame
         is treated as occluded and no template is replaced (L1-APG: 0.25).
-        On unit-norm views this test almost never fires: E's threshold
-        (gamma / 2 = 0.125 per entry) is above the typical entry of a unit
-        vector of 225 values (0.067); measured, no frame of the 18 sequences
-        is flagged (note [17]), and E's support stays under 3% of the entries
-        at the frames where Walking2 is lost (note [25]).
-    occlusion_ratio : float or None
-        A second occlusion test, on the likelihood: the frame is treated as
-        occluded (no template replaced in it and the next 4 frames, as for
-        ``occlusion_fraction``) when the chosen candidate's residual with its
-        terms, ``-log(score) / alpha``, exceeds ``occlusion_ratio`` times its
-        median over the previous ``smtmvt.templates.OCCLUSION_WINDOW`` (20) frames (from the
-        fifth frame on). None: off (the paper).
     prune_eps : float
         Bounded coding (:func:`smtmvt.likelihood.observe`, SMTMVT's model only:
         the comparison models code every candidate): the candidates left
@@ -825,7 +813,6 @@ class TrackerConfig:
     solver_max_iter: int = 200
     update_angle: float = 60.0
     occlusion_fraction: float = 0.25
-    occlusion_ratio: float | None = None
     fixed_templates: int = 1
     anchor_cos: float = -1.0
     view_weights: tuple | None = None
@@ -863,7 +850,6 @@ class TrackerConfig:
             "prune_eps": 0 <= self.prune_eps < 1,
             "frame_size": self.frame_size is None or (len(self.frame_size) == 2 and min(self.frame_size) >= 16),
             "antialias": self.antialias >= 0,
-            "occlusion_ratio": self.occlusion_ratio is None or self.occlusion_ratio >= 1,
             "hog_plane": self.hog_plane in ("tan_triggs", "gray"),
             "lbp_plane": self.lbp_plane in ("tan_triggs", "gray"),
             "color_grid": int(self.color_grid) >= 1,
@@ -964,7 +950,6 @@ class TrackerConfig:
             solver_max_iter=200,
             update_angle=60.0,
             occlusion_fraction=0.25,
-            occlusion_ratio=None,
             fixed_templates=1,
             anchor_cos=-1.0,
             view_weights=None,

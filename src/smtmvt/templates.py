@@ -34,10 +34,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["TemplateSet", "UpdateDecision", "OCCLUSION_WINDOW"]
-
-#: Frames whose chosen residuals make the median of ``TrackerConfig.occlusion_ratio``'s test.
-OCCLUSION_WINDOW = 20
+__all__ = ["TemplateSet", "UpdateDecision"]
 
 
 @dataclass
@@ -85,7 +82,6 @@ class TemplateSet:
         intensity_view: int | None = 0,
         anchor_cos: float = -1.0,
         fixed: int = 1,
-        flagged: bool = False,
     ) -> UpdateDecision:
         """Apply the rule of the module docstring for the frame's best candidate.
 
@@ -102,8 +98,6 @@ class TemplateSet:
         anchor_cos : drift check against the first template: a template is
             replaced only when the mean over the views of the cosine between
             the candidate and template 0 is at least ``anchor_cos`` (-1: no check).
-        flagged : the caller's own occlusion test flagged this frame (the
-            tracker's ``config.occlusion_ratio``): treated as occluded whatever E says.
         """
         c = np.asarray(c, dtype=np.float64)
         mean_c = c.mean(axis=0)
@@ -121,7 +115,7 @@ class TemplateSet:
             cos = float(np.mean([float(np.dot(xk, Dk[:, j_star])) for xk, Dk in zip(x, self.dictionaries)]))
         angle = float(np.degrees(np.arccos(np.clip(cos, -1.0, 1.0))))
 
-        occluded = occ > occlusion_fraction or bool(flagged)
+        occluded = occ > occlusion_fraction
         if occluded:
             self.cooldown = 5
         replaced = None

@@ -54,7 +54,7 @@ from .preprocess import (
 )
 from .solvers import BOUNDED_CODING, SOLVERS, solve_smtmvt
 from .solvers.bounds import range_basis
-from .templates import OCCLUSION_WINDOW, TemplateSet
+from .templates import TemplateSet
 from .warp import inside_fraction, remap_patches, sampling_grid
 
 __all__ = ["Tracker", "TrackResult", "FrameDetail", "track_frames"]
@@ -390,7 +390,6 @@ class Tracker:
         self._init_state = self._state.copy()
         self._velocity = np.zeros(2)
         self._residuals: list[float] = []  # the chosen candidates' residuals (config.search_expand)
-        self._totals: list[float] = []  # the chosen candidates' residuals with terms (config.occlusion_ratio)
         self._expand = 1.0
         # velocity_fraction of the particles, evenly spread over the indices, take the velocity term
         i = np.arange(cfg.n_particles)
@@ -629,7 +628,6 @@ class Tracker:
                 intensity_view=self._intensity_index,
                 anchor_cos=cfg.anchor_cos,
                 fixed=cfg.fixed_templates,
-                flagged=self._unusual(-float(np.log(p[best])) / cfg.alpha),
             )
         if decision.replaced is not None:
             self._bases = None  # a dictionary column changed: its range bases are recomputed
@@ -676,17 +674,6 @@ class Tracker:
         if not typical > 0:
             return 1.0
         return float(np.clip(residual / typical, 1.0, cap))
-
-    def _unusual(self, total: float) -> bool:
-        """``config.occlusion_ratio``'s test of the chosen candidate's residual
-        with its terms: above the ratio times the median of the previous
-        ``OCCLUSION_WINDOW`` frames' (from the fifth frame on)."""
-        ratio = self.config.occlusion_ratio
-        if ratio is None:
-            return False
-        recent = self._totals[-OCCLUSION_WINDOW:]
-        self._totals = recent + [total]
-        return len(recent) >= 4 and total > ratio * float(np.median(recent))
 
     def _prune_eps(self, n: int) -> float:
         """Bounded coding's ``eps`` for n particles: 0 (code all) for models it is not exact for."""
