@@ -100,9 +100,9 @@ def test_observe_with_deferred_views_keeps_the_rule():
 
     def deferred(idx):
         asked.append(np.array(idx))
-        return [X[2][:, idx]]
+        return X[2][:, idx], None
 
-    lazy = observe(X[:2], D, _code, alpha=30.0, eps=eps, deferred=deferred)
+    lazy = observe(X[:2], D, _code, alpha=30.0, eps=eps, deferred=[deferred])
     computed = np.concatenate(asked)
     assert len(set(computed.tolist())) == len(computed)  # each candidate asked at most once
     assert 16 <= len(computed) < 60  # the first pass, and not every candidate
@@ -123,10 +123,67 @@ def test_observe_with_deferred_views_keeps_the_rule():
 def test_observe_without_deferred_views_is_unchanged_by_the_option():
     X, D = make_instance(36, K=3, N=5, n=40)
     a = observe(X, D, _code, alpha=30.0, eps=1e-3)
-    b = observe(X, D, _code, alpha=30.0, eps=1e-3, deferred=lambda idx: [])
+    b = observe(X, D, _code, alpha=30.0, eps=1e-3, deferred=[])
     np.testing.assert_array_equal(a.coded, b.coded)
     np.testing.assert_array_equal(a.likelihood, b.likelihood)
     assert b.complete.all()
+
+
+def test_observe_computes_deferred_views_in_order_each_where_still_needed():
+    """Two deferred views: the second asked only of candidates that have the first,
+    and of fewer of them; the best candidate, the codes and the rule as coding all."""
+    X, D = make_instance(37, K=4, N=5, n=80)
+    eps = 1e-3
+    full = observe(X, D, _code, alpha=30.0, eps=0.0)
+    asked: list = [[], []]
+
+    def stage(j):
+        def compute(idx):
+            if j == 1:  # view 3 only after view 2
+                assert np.isin(idx, np.concatenate(asked[0])).all()
+            asked[j].append(np.array(idx))
+            return X[2 + j][:, idx], None
+
+        return compute
+
+    lazy = observe(X[:2], D, _code, alpha=30.0, eps=eps, deferred=[stage(0), stage(1)])
+    first, second = (np.concatenate(a) for a in asked)
+    assert len(set(first.tolist())) == len(first) and len(set(second.tolist())) == len(second)
+    assert 16 <= len(second) < len(first) < 80  # this instance stops some candidates after view 2
+    np.testing.assert_array_equal(np.sort(second), np.flatnonzero(lazy.complete))
+    assert lazy.complete[lazy.coded].all()
+    best = int(np.argmax(full.likelihood))
+    assert int(np.argmax(lazy.likelihood)) == best
+    np.testing.assert_allclose(lazy.residual[lazy.coded], full.residual[lazy.coded], atol=1e-12)
+    skipped = ~lazy.coded
+    assert skipped.any() and full.likelihood[skipped].sum() <= eps * full.likelihood[best]
+    assert np.all(lazy.bound <= full.residual + 1e-9)
+    with pytest.raises(ValueError, match="deferred"):
+        observe(X[:2], D, _code, alpha=30.0, eps=eps, deferred=[stage(0)])  # view 3 has no stage
+
+
+def test_observe_adds_a_deferred_views_offset_when_it_is_computed():
+    """An offset that is a sum over the views (as the anchor term), its last view's
+    part deferred with that view: the likelihoods of the coded candidates are those
+    of the whole offset known up front, and the skipped ones stay within the rule."""
+    X, D = make_instance(38, K=3, N=5, n=60)
+    eps = 1e-3
+    rng = np.random.default_rng(1)
+    parts = 0.05 * rng.random((2, 60))  # the offset's parts over views 0-1 and view 2
+    full = observe(X, D, _code, alpha=30.0, eps=0.0, offset=parts.sum(axis=0))
+
+    def deferred(idx):
+        return X[2][:, idx], parts[1, idx]
+
+    lazy = observe(X[:2], D, _code, alpha=30.0, eps=eps, offset=parts[0], deferred=[deferred])
+    best = int(np.argmax(full.likelihood))
+    assert int(np.argmax(lazy.likelihood)) == best
+    np.testing.assert_allclose(lazy.likelihood[lazy.coded], full.likelihood[lazy.coded], rtol=1e-10)
+    skipped = ~lazy.coded
+    assert skipped.any() and full.likelihood[skipped].sum() <= eps * full.likelihood[best]
+    # without its deferred part the offset would make the coded likelihoods too high
+    early = observe(X[:2], D, _code, alpha=30.0, eps=eps, offset=parts[0], deferred=[lambda i: (X[2][:, i], None)])
+    assert np.all(early.likelihood[early.coded] > full.likelihood[early.coded])
 
 
 @pytest.fixture(scope="module")
@@ -155,11 +212,13 @@ def test_tracker_boxes_do_not_depend_on_bounded_coding_or_probes(demo):
     np.testing.assert_array_equal(pruned, _boxes(demo, cfg, probes=True))
 
 
-def test_deferred_views_choose_the_same_box_from_the_same_particles(demo):
-    """With the LBP view deferred, each frame's chosen particle is the one computing
-    every view chooses (the same particles: the state is copied across)."""
-    cfg = TrackerConfig(n_particles=200, seed=5)
-    assert cfg.deferred_views == ("lbp",)
+@pytest.mark.parametrize("deferred", [("lbp",), ("hog", "lbp")])
+def test_deferred_views_choose_the_same_box_from_the_same_particles(demo, deferred):
+    """With the LBP view deferred (and HOG, a term view of the anchor term, before
+    it), each frame's chosen particle is the one computing every view chooses, with
+    the same score (the same particles: the state is copied across)."""
+    cfg = TrackerConfig(n_particles=200, seed=5, deferred_views=deferred)
+    assert cfg.anchor_weight > 0 and "hog" in cfg.term_views
     lazy, eager = Tracker(cfg), Tracker(cfg.replace(deferred_views=()))
     for t in (lazy, eager):
         t.init(demo.frames[0], demo.groundtruth[0])
@@ -171,6 +230,7 @@ def test_deferred_views_choose_the_same_box_from_the_same_particles(demo):
         rb, db = eager.update_detailed(frame)
         assert da.best == db.best and ra.box == rb.box
         assert ra.residual == pytest.approx(rb.residual, rel=1e-9)
+        assert ra.score == pytest.approx(rb.score, rel=1e-9)  # the anchor term over every term view
         partial.append(da.observation.complete.mean())
         eager._templates = copy.deepcopy(lazy._templates)
     assert np.median(partial) < 0.5  # the LBP view was left out for most candidates

@@ -170,12 +170,13 @@ def test_anchor_term_moves_the_boxes_only_when_on(demo):
         TrackerConfig(anchor_weight=-1.0)
 
 
-def test_term_views_must_not_be_deferred(demo):
-    with pytest.raises(ValueError, match="deferred_views"):
-        TrackerConfig(deferred_views=("hog", "lbp"))  # HOG is a term view of the default anchor term
+def test_background_term_views_must_not_be_deferred(demo):
+    with pytest.raises(ValueError, match="deferred_views"):  # HOG is a term view of the background term
+        TrackerConfig(deferred_views=("hog", "lbp"), background_weight=0.5)
     frames, gt = demo
     for cfg in (
-        TrackerConfig(deferred_views=("hog", "lbp"), term_views=("intensity", "color"), n_particles=60, seed=1),
+        TrackerConfig(deferred_views=("hog", "lbp"), term_views=("intensity", "color"), background_weight=0.5),
+        TrackerConfig(deferred_views=("hog", "lbp"), n_particles=60, seed=1),  # the anchor term's part deferred
         TrackerConfig(deferred_views=("hog", "lbp"), anchor_weight=0.0, n_particles=60, seed=1),  # no term
     ):
         t = Tracker(cfg)

@@ -389,3 +389,27 @@ def test_intensity_factor_sets_the_intensity_template_size():
     assert sizes[1] == (int(np.floor(h / 2 + 0.5)), int(np.floor(w / 2 + 0.5))) and sizes[0] != sizes[1]
     with pytest.raises(ValueError, match="intensity_factor"):
         TrackerConfig(intensity_factor=-1.0)
+
+
+def test_stage_timings_are_disjoint(demo):
+    """Each stage's time is counted once: a block timed inside a block of the same
+    stage (a deferred view's features inside the likelihood's bookkeeping) is not
+    added again, so the stages' times sum to no more than the updates' wall time."""
+    import time
+
+    frames = demo.frames
+    t = Tracker(TrackerConfig(n_particles=100, seed=1, deferred_views=("hog", "lbp")))
+    t.init(frames[0], demo.groundtruth[0])
+    t.timings.clear()
+    t0 = time.perf_counter()
+    with t._timed("features"):
+        with t._timed("features"):
+            time.sleep(0.05)
+    assert t.timings["features"] <= time.perf_counter() - t0  # once, not twice
+    t.timings.clear()
+    t0 = time.perf_counter()
+    for f in frames[1:6]:
+        t.update(f)
+    wall = time.perf_counter() - t0
+    assert {"warp", "features", "solve", "likelihood"} <= set(t.timings)
+    assert sum(t.timings.values()) <= wall

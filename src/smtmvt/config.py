@@ -652,10 +652,12 @@ class TrackerConfig:
         (measured in the table above, note [16]); 0: the paper's likelihood.
     term_views : tuple of str
         The views the anchor and background terms compare (those of ``views``
-        among them; a term with none of them is 0): views computed for every
-        candidate, so none of them may be in ``deferred_views`` while a term
-        is on. Default intensity, color and HOG (the LBP view is deferred),
-        as measured.
+        among them; a term with none of them is 0). Default intensity, color
+        and HOG, as measured. The background term needs them for every
+        candidate, so none of them may be in ``deferred_views`` while it is
+        on; the anchor term is a sum over its views, so a deferred one adds
+        its part where it is computed (the candidates without it keep a
+        lower bound of the term, as of their residual).
     feature_size : (int, int)
         Height, width (pixels) to which each candidate is warped for the HOG,
         LBP and color views.
@@ -799,7 +801,8 @@ class TrackerConfig:
         Views computed only for the candidates whose likelihood bound cannot
         be settled without them (:func:`smtmvt.likelihood.observe`, "deferred
         views"): those of them that end ``views`` (default the LBP view, the
-        most expensive, last in the default order). A speed setting: the chosen
+        most expensive, last in the default order), each computed in turn for
+        the candidates that still need it. A speed setting: the chosen
         box is the one computing every view would choose from the same
         particles, and the likelihoods the resampling sees differ by the
         bounded-coding rule's ``prune_eps`` at most. () computes every view of
@@ -912,12 +915,12 @@ class TrackerConfig:
             if not ok:
                 raise ValueError(f"TrackerConfig: invalid {name}={getattr(self, name)!r}")
         object.__setattr__(self, "term_views", tuple(self.term_views))
-        if self.anchor_weight or self.background_weight:
+        if self.background_weight:
             late = [v for v in self.term_views if v in self.views and v in self.deferred_views]
             if late:
                 raise ValueError(
                     f"TrackerConfig: term_views {late} are also in deferred_views={self.deferred_views!r}; "
-                    "the anchor and background terms need their views for every candidate"
+                    "the background term needs its views for every candidate"
                 )
         object.__setattr__(self, "views", tuple(self.views))
         object.__setattr__(self, "deferred_views", tuple(self.deferred_views))

@@ -37,17 +37,20 @@ part of the bound: ``u_i = exp(-alpha (b_i + o_i))`` bounds ``p_i = exp(-alpha
 Deferred views. The bound of a candidate is a sum over the views of
 nonnegative terms, so the terms of some views alone are a (looser) lower
 bound too. With ``deferred`` (:func:`observe`), the last views are computed
-only for the candidates that need them: the bounds start as the sums over the
-views at hand; the ``FIRST_PASS`` candidates of smallest bound get their
-deferred views (hence full bounds) and are coded; then, until no candidate
-outside the skipped tail lacks its deferred views, the tail is taken again
-over the current bounds (full where known, partial elsewhere) and the
-candidates outside it get their deferred views. The skipped tail's bounds,
-each a true lower bound of its residual, still sum to at most ``eps * p*``,
-so everything above holds; only the bounds of the skipped candidates are
-looser than with every view computed (a few more candidates are coded). On
-Crossing, Bolt and Girl, bounding by the intensity, color and HOG views left
-the LBP view to compute for 26-87 of the 400 candidates.
+one at a time, each only for the candidates that still need it: the bounds
+start as the sums over the views at hand; the ``FIRST_PASS`` candidates of
+smallest bound get every deferred view (hence full bounds) and are coded;
+then, until no candidate outside the skipped tail lacks a deferred view, the
+tail is taken again over the current bounds (full where known, partial
+elsewhere) and each candidate outside it gets its next deferred view. The
+skipped tail's bounds, each a true lower bound of its residual, still sum to
+at most ``eps * p*``, so everything above holds; only the bounds of the
+skipped candidates are looser than with every view computed (a few more
+candidates are coded). A term of the offset that is itself a sum of
+nonnegative parts over the views (the anchor term of :mod:`smtmvt.anchor`)
+is deferred the same way: each deferred view brings its part. On Crossing,
+Bolt and Girl, bounding by the intensity, color and HOG views left the LBP
+view to compute for 26-87 of the 400 candidates.
 """
 
 from __future__ import annotations
@@ -153,11 +156,15 @@ def observe(
     timed : optional ``timed(stage)`` context manager factory; the solver's
         time is reported as ``"solve"``, the rest (bounds, residuals,
         likelihoods) as ``"likelihood"``.
-    deferred : optional ``deferred(idx) -> list`` of the last ``K - len(X)``
-        views ``(d_k, len(idx))`` of the candidates ``idx`` (int array), for
-        views computed only where needed (see the module docstring; ``X``
-        then holds the first views only, ``D`` all K dictionaries). Its time
-        is reported as ``"features"``. The computed columns are returned in
+    deferred : optional list of ``K - len(X)`` callables, one per view after
+        ``X``'s (in ``D``'s order), for views computed only where needed (see
+        the module docstring; ``X`` then holds the first views only, ``D`` all
+        K dictionaries): ``deferred[j](idx) -> (view, offset)``, view
+        ``len(X) + j`` of the candidates ``idx`` (int array), ``(d_k,
+        len(idx))``, and the part of their offset that comes with it,
+        ``(len(idx),)`` float >= 0, or None for none. View j is asked only
+        for candidates that have views ``0 .. j - 1``. Its time is reported
+        as ``"features"``. The computed columns are returned in
         :attr:`Observation.views`.
     bases : optional list of the K :func:`smtmvt.solvers.bounds.range_basis`
         of ``D`` (they change only with the templates: the tracker keeps them),
@@ -173,13 +180,13 @@ def observe(
     valid = np.ones(n, dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
     always = np.zeros(n, dtype=bool) if always is None else np.asarray(always, dtype=bool)
     shift = np.zeros(n) if offset is None else np.asarray(offset, dtype=np.float64).reshape(n)
-    coding = _Coding(X, D, code, eps, timed, deferred, bases)
+    coding = _Coding(X, D, code, eps, timed, deferred, bases, shift)
     if eps <= 0 or not valid.any():
         coding.run(valid | always)
     else:
-        _code_bounded(coding, valid, always, shift, alpha, eps)
+        _code_bounded(coding, valid, always, alpha, eps)
     with timed("likelihood"):
-        p = likelihoods(coding.residual + shift, alpha, valid | always)
+        p = likelihoods(coding.residual + coding.shift, alpha, valid | always)
     return Observation(
         likelihood=p,
         residual=coding.residual,
@@ -192,13 +199,14 @@ def observe(
     )
 
 
-def _code_bounded(coding: _Coding, valid, always, shift, alpha: float, eps: float) -> None:
+def _code_bounded(coding: _Coding, valid, always, alpha: float, eps: float) -> None:
     """The rule of the module docstring: code the ``FIRST_PASS`` candidates of
     smallest bound (and ``always``), then every candidate outside the tail of
     largest bounds whose likelihood bounds sum to at most ``eps`` times the best
-    likelihood found, completing the deferred views until that tail is stable."""
+    likelihood found, computing the deferred views (one at a time) until that
+    tail is stable."""
     n = len(valid)
-    bound = coding.bound
+    bound, shift = coding.bound, coding.shift  # both rise as deferred views are computed
     order = np.flatnonzero(valid)[np.argsort((bound + shift)[valid], kind="stable")]
     first = np.zeros(n, dtype=bool)
     first[order[:FIRST_PASS]] = True
@@ -213,22 +221,26 @@ def _code_bounded(coding: _Coding, valid, always, shift, alpha: float, eps: floa
         needed = np.isin(np.arange(n), rest[skipped_mass > eps])
         if coding.have[needed].all():
             break
-        coding.complete(needed)  # their bounds rise: take the tail again
+        coding.advance(needed)  # their bounds rise: take the tail again
     coding.run(needed)
 
 
 class _Coding:
-    """What :func:`observe` fills in for the n candidates (views, bounds, codes,
-    residuals), and its two steps: completing the deferred views of some
-    candidates and coding some candidates."""
+    """What :func:`observe` fills in for the n candidates (views, bounds, offsets,
+    codes, residuals), and its two steps: computing the next deferred view of
+    some candidates and coding some candidates."""
 
-    def __init__(self, X, D, code: Callable, eps: float, timed, deferred, bases) -> None:
+    def __init__(self, X, D, code: Callable, eps: float, timed, deferred, bases, shift) -> None:
         n = X[0].shape[1]
         K, N = len(D), D[0].shape[1]
         self.K0 = len(X)
-        self.D, self.code, self.eps, self.timed, self.deferred = D, code, eps, timed, deferred
+        self.stages = list(deferred or [])
+        if len(self.stages) != K - self.K0:
+            raise ValueError(f"{K} dictionaries but {self.K0} views and {len(self.stages)} deferred ones")
+        self.D, self.code, self.eps, self.timed = D, code, eps, timed
+        self.shift = shift.copy()
         self.X = list(X) + [np.zeros((Dk.shape[0], n), dtype=np.asarray(X[0]).dtype) for Dk in D[self.K0 :]]
-        self.have = np.full(n, deferred is None or self.K0 == K)  # candidates whose every view is at hand
+        self.level = np.zeros(n, dtype=np.intp)  # deferred views computed, in order
         self.bases = [range_basis(Dk) for Dk in D] if bases is None else bases
         with timed("likelihood"):
             self.bound = self._lower_bounds(self.X[: self.K0], D[: self.K0], self.bases[: self.K0])
@@ -237,22 +249,35 @@ class _Coding:
         self.E = [np.zeros((Dk.shape[0], n)) for Dk in D]
         self.residual = np.full(n, np.nan)
 
+    @property
+    def have(self) -> np.ndarray:
+        """(n,) bool, the candidates whose every view is at hand."""
+        return self.level == len(self.stages)
+
     def _lower_bounds(self, Xs, Ds, Bs) -> np.ndarray:
         return nonnegative_residuals(Xs, Ds, Bs) if self.eps > 0 else least_squares_residuals(Xs, Ds, Bs)
 
+    def advance(self, mask) -> None:
+        """Compute the next deferred view of each candidate in ``mask`` lacking one."""
+        level = np.where(mask, self.level, len(self.stages))
+        for j, stage in enumerate(self.stages):
+            idx = np.flatnonzero(level == j)
+            if idx.size == 0:
+                continue
+            k = self.K0 + j
+            with self.timed("features"):
+                view, offset = stage(idx)
+            with self.timed("likelihood"):
+                self.X[k][:, idx] = view
+                self.bound[idx] += self._lower_bounds([view], self.D[k : k + 1], self.bases[k : k + 1])
+                if offset is not None:
+                    self.shift[idx] += offset
+                self.level[idx] = j + 1
+
     def complete(self, mask) -> None:
-        """Compute the deferred views of the candidates in ``mask`` lacking them."""
-        idx = np.flatnonzero(mask & ~self.have)
-        if idx.size == 0:
-            return
-        K0 = self.K0
-        with self.timed("features"):
-            late = self.deferred(idx)
-        with self.timed("likelihood"):
-            for k, Vk in enumerate(late, start=K0):
-                self.X[k][:, idx] = Vk
-            self.bound[idx] += self._lower_bounds(list(late), self.D[K0:], self.bases[K0:])
-            self.have[idx] = True
+        """Compute every deferred view of the candidates in ``mask`` lacking them."""
+        for _ in range(len(self.stages)):  # each advance moves every one of them on by a view
+            self.advance(mask)
 
     def run(self, mask) -> None:
         """Code the candidates in ``mask`` (their deferred views completed first)."""

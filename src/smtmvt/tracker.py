@@ -148,6 +148,7 @@ class Tracker:
         self._initialized = False
         #: Seconds spent per stage since the last :meth:`init` (for ``bench/``).
         self.timings: defaultdict[str, float] = defaultdict(float)
+        self._timing: set[str] = set()  # the stages being timed now
         self._threadpools = ThreadpoolController() if self.config.blas_threads else None
 
     @contextmanager
@@ -161,11 +162,19 @@ class Tracker:
     # -- stages ------------------------------------------------------------
     @contextmanager
     def _timed(self, stage: str):
+        """Add the block's time to ``timings[stage]``, once: a block of a stage
+        already being timed (a deferred view's features inside observe's) is not
+        counted again."""
+        if stage in self._timing:
+            yield
+            return
+        self._timing.add(stage)
         t0 = time.perf_counter()
         try:
             yield
         finally:
             self.timings[stage] += time.perf_counter() - t0
+            self._timing.discard(stage)
 
     def _views(self, frame: PreparedFrame, params: np.ndarray, plane_scale: float = 1.0) -> list:
         """Candidate views ``[(d_k, m) float32]`` of the states ``params (m, 6)`` (see :meth:`_patches`)."""
@@ -288,10 +297,12 @@ class Tracker:
         views = self._extract(self._patches(frame, ring, plane_scale), [cfg.views[i] for i in self._term_index])
         return self._weighted(views, index=self._term_index)
 
-    def _terms_of(self, views: list) -> list:
-        """The term views (``config.term_views``) of ``views`` (in ``config.views``
-        order), weighted as by :meth:`_weighted`."""
-        return self._weighted([views[i] for i in self._term_index], index=self._term_index)
+    def _terms_of(self, views: list, first: int = 0) -> list:
+        """The term views (``config.term_views``) among ``views`` (views ``first,
+        first + 1, ...`` of ``config.views``, in that order), weighted as by
+        :meth:`_weighted`."""
+        index = [i for i in self._term_index if first <= i < first + len(views)]
+        return self._weighted([views[i - first] for i in index], index=index)
 
     def _weighted(self, views: list, first: int = 0, index=None) -> list:
         """``views`` (views ``first, first + 1, ...`` of ``config.views``, or the
@@ -383,7 +394,8 @@ class Tracker:
         while n_first > 0 and cfg.views[n_first - 1] in cfg.deferred_views:
             n_first -= 1
         self._n_first = n_first if n_first > 0 and self._prune_eps(cfg.n_particles) > 0 else len(cfg.views)
-        # the views of the background and anchor terms (config.term_views; never deferred)
+        # the views of the background and anchor terms (config.term_views; deferred only
+        # without the background term, whose measure is not a sum over the views)
         self._term_index = [cfg.views.index(v) for v in cfg.term_views if v in cfg.views]
         self._rng = np.random.default_rng(cfg.seed)
         self._state = box_to_affine(wb)
@@ -549,7 +561,7 @@ class Tracker:
         if len(probe_states):
             patches = patches.joined(self._patches(probe_planes, probe_states, plane_scale))
         # views computed for every candidate, and the views deferred (likelihood.observe)
-        now, later = cfg.views[: self._n_first], cfg.views[self._n_first :]
+        now = cfg.views[: self._n_first]
         X = self._extract(patches, now)
         with self._timed("likelihood"):
             offset = self._offsets(X, prepared, probe_planes, particles, probe_states, plane_scale)
@@ -561,11 +573,19 @@ class Tracker:
             np.zeros((Dk.shape[0], len(states)), dtype=np.float32) for Dk in self._templates.dictionaries[len(now) :]
         ]
 
-        def deferred(idx):
-            views = self._extract(patches.subset(idx), later)
-            for Xk, Vk in zip(X_later, views):
-                Xk[:, idx] = Vk
-            return self._weighted(views, first=len(now))
+        def stage(k: int):
+            """View k (deferred) of some candidates, weighted, and its part of their anchor term."""
+
+            def compute(idx):
+                (view,) = self._extract(patches.subset(idx), [cfg.views[k]])
+                X_later[k - len(now)][:, idx] = view
+                (weighted,) = self._weighted([view], first=k)
+                if not (cfg.anchor_weight and k in self._term_index):
+                    return weighted, None
+                first = self._weighted([self._templates.dictionaries[k][:, 0]], first=k)
+                return weighted, anchor_offsets([weighted], first, cfg.anchor_weight)
+
+            return compute
 
         dictionaries = self._weighted(self._templates.dictionaries)
         if self._bases is None:  # the templates changed
@@ -579,7 +599,7 @@ class Tracker:
             eps=self._prune_eps(n),
             always=is_probe,
             timed=self._timed,
-            deferred=deferred if later else None,
+            deferred=[stage(k) for k in range(len(now), len(cfg.views))],
             bases=self._bases,
             offset=offset,
         )
@@ -590,12 +610,13 @@ class Tracker:
         foreground; ``(n + m,)``), or None when all are off."""
         cfg = self.config
         offset = None
-        # (a term view is never deferred while a term is on: TrackerConfig checks it)
+        # the term views at hand: a deferred one brings its part of the anchor term when it is
+        # computed (the stages of _observe); none is deferred with the background term
         X_terms = self._terms_of(X) if cfg.anchor_weight or cfg.background_weight else []
         if self._background is not None and X_terms:
             offset = background_offsets(X_terms, self._background, cfg.background_weight, cfg.background_measure)
         if cfg.anchor_weight and X_terms:
-            first = self._terms_of([Dk[:, 0] for Dk in self._templates.dictionaries])
+            first = self._terms_of([Dk[:, 0] for Dk in self._templates.dictionaries[: len(X)]])
             anchor = anchor_offsets(X_terms, first, cfg.anchor_weight)
             offset = anchor if offset is None else offset + anchor
         if cfg.foreground_weight:
