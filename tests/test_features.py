@@ -504,6 +504,32 @@ def test_patches_without_a_plane_name_it_when_a_view_needs_it():
         extract_views(Patches(ok.intensity, ok.gray, ok.color), ("lbp",), {"lbp": {"plane": "gray"}})
 
 
+def test_patches_subset_keeps_only_the_arrays_asked_for():
+    """A deferred view gets the patches of its own array only; a view whose array is
+    missing names it; a strided float32 array is kept as it is (no copy), and the
+    views read it as they read its contiguous copy."""
+    rng = np.random.default_rng(17)
+    ok = _make_patches(4, rng)
+    raw_only = Patches(ok.intensity, ok.gray, ok.color, raw=ok.gray).subset([3, 1], keep={"raw"})
+    assert raw_only.intensity is None and raw_only.color is None and raw_only.gray is None
+    assert raw_only.n == 2
+    assert_array_equal(raw_only.raw, ok.gray[[3, 1]])
+    (hog,) = extract_views(raw_only, ("hog",), {"hog": {"plane": "gray"}})
+    assert_array_equal(hog, extract_views(ok.subset([3, 1]), ("hog",))[0])
+    with pytest.raises(ValueError, match="Patches.color"):
+        extract_views(raw_only, ("color",))
+    with pytest.raises(ValueError, match="Patches.intensity"):
+        extract_views(raw_only, ("intensity",))
+    with pytest.raises(ValueError, match="at least one array"):
+        Patches(None, None, None)
+    four = np.stack([ok.gray, ok.gray[:, ::-1], ok.gray.T.transpose(2, 1, 0), ok.gray], axis=-1)  # (n, h, w, 4)
+    strided = Patches(ok.intensity, None, ok.color, raw=four[..., 3])
+    assert np.shares_memory(strided.raw, four) and not strided.raw.flags.c_contiguous
+    for view in ("hog", "lbp"):
+        options = {view: {"plane": "gray"}}
+        assert_array_equal(extract_views(strided, (view,), options)[0], extract_views(ok, (view,))[0])
+
+
 # --------------------------------------------------------------------------- normalize_columns
 
 

@@ -231,17 +231,18 @@ class Tracker:
         gray plane, sampled once; an RGB frame's three channels and its gray
         plane are smoothed and sampled as one 4-channel plane (OpenCV samples 4
         channels in about the time of 1, with the same values as each channel
-        alone), then split by OpenCV (numpy's copy of a 3-of-4-channel view
-        costs more than the sampling saves)."""
+        alone); the color channels are copied out by OpenCV (numpy's copy of a
+        3-of-4-channel view costs more than the sampling saves), the gray one is
+        returned as a strided view (copied by the views that read it, and only
+        for the candidates they are computed for when deferred)."""
         if frame.color.shape[2] == 1:  # prepare_frame: a gray frame's color plane is its gray plane
             color = remap_patches(smooth(frame.color, sigma, win), X, Y)
-            return color, np.ascontiguousarray(color[..., 0])
+            return color, color[..., 0]
         plane = cv2.merge([frame.color[..., 0], frame.color[..., 1], frame.color[..., 2], frame.gray])
         both = remap_patches(smooth(plane, sigma, win), X, Y)
         n, ph, pw, _ = both.shape
-        pixels = both.reshape(n * ph, pw, 4)
-        color = cv2.cvtColor(pixels, cv2.COLOR_RGBA2RGB).reshape(n, ph, pw, 3)
-        return color, cv2.extractChannel(pixels, 3).reshape(n, ph, pw)
+        color = cv2.cvtColor(both.reshape(n * ph, pw, 4), cv2.COLOR_RGBA2RGB).reshape(n, ph, pw, 3)
+        return color, both[..., 3]  # a strided view: copied only where a view reads it
 
     def _smoothing(self, plane_scale: float) -> tuple[float, float, float]:
         """Anti-aliasing sigmas (plane pixels) of the intensity, feature-size and
@@ -389,6 +390,9 @@ class Tracker:
         read = {"hog": {cfg.hog_plane}, "lbp": {cfg.lbp_plane}, "intensity": set(), "color": set()}
         planes = set().union(*(read.get(view, {"gray", "tan_triggs"}) for view in cfg.views))
         self._needs_raw, self._needs_gray = "gray" in planes, "tan_triggs" in planes
+        # the Patches arrays each built-in view reads (a deferred view gets only those)
+        array_of = {"gray": "raw", "tan_triggs": "gray"}
+        self._reads = {view: {array_of[p] for p in read[view]} | ({view} & {"intensity", "color"}) for view in read}
         # the views from this index on are computed only where the bounds need them
         n_first = len(cfg.views)
         while n_first > 0 and cfg.views[n_first - 1] in cfg.deferred_views:
@@ -577,7 +581,7 @@ class Tracker:
             """View k (deferred) of some candidates, weighted, and its part of their anchor term."""
 
             def compute(idx):
-                (view,) = self._extract(patches.subset(idx), [cfg.views[k]])
+                (view,) = self._extract(patches.subset(idx, self._reads.get(cfg.views[k])), [cfg.views[k]])
                 X_later[k - len(now)][:, idx] = view
                 (weighted,) = self._weighted([view], first=k)
                 if not (cfg.anchor_weight and k in self._term_index):

@@ -211,6 +211,8 @@ def color_view(patches, grid: int = 1, power: float = 1.0) -> np.ndarray:
     channel, bin)``: 48 values for RGB, 16 for gray frames at ``grid = 1``.
     """
     colors = patches.color
+    if colors is None:
+        raise ValueError("Patches.color (the color patches) was not given")
     grid = int(grid)
     if grid == 1:
         return histogram_power(color_histograms(colors, COLOR_BINS), power)

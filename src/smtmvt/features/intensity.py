@@ -63,4 +63,6 @@ def intensity_view(patches) -> np.ndarray:
     (n, th * tw) float32 ndarray, row-major pixel order.
     """
     x = patches.intensity
+    if x is None:
+        raise ValueError("Patches.intensity (the intensity template patches) was not given")
     return np.ascontiguousarray(x.reshape(x.shape[0], -1), dtype=np.float32)

@@ -47,7 +47,16 @@ def _as_float32(name: str, value, ndim: int, layout: str) -> np.ndarray:
         raise ValueError(f"Patches.{name} must be {layout}, got shape {array.shape}")
     if not (np.issubdtype(array.dtype, np.floating) or np.issubdtype(array.dtype, np.integer)):
         raise TypeError(f"Patches.{name} must be a real-valued array, got dtype {array.dtype}")
-    return np.ascontiguousarray(array, dtype=np.float32)
+    return np.asarray(array, dtype=np.float32)
+
+
+#: each array of Patches: its number of dimensions and layout
+_LAYOUTS = {
+    "intensity": (3, "(n, th, tw)"),
+    "gray": (3, "(n, fh, fw)"),
+    "color": (4, "(n, fh, fw, C)"),
+    "raw": (3, "(n, fh, fw)"),
+}
 
 
 @dataclass(frozen=True)
@@ -56,77 +65,77 @@ class Patches:
 
     Attributes
     ----------
-    intensity : (n, th, tw) float32
+    intensity : (n, th, tw) float32 or None
         Tan-Triggs normalized gray, warped at the intensity template size
-        (:func:`smtmvt.features.intensity_template_size`).
+        (:func:`smtmvt.features.intensity_template_size`); input of the
+        intensity view.
     gray : (n, fh, fw) float32 or None
         Tan-Triggs normalized gray, warped at the feature size (default 32x32);
         input of the HOG and LBP views asked for ``plane="tan_triggs"`` (the
-        paper). HOG needs ``fh, fw >= 16``. None when no view reads it.
-    color : (n, ch, cw, C) float32
+        paper). HOG needs ``fh, fw >= 16``.
+    color : (n, ch, cw, C) float32 or None
         Raw frame colors scaled to [0, 1], C = 3 (RGB) or C = 1 (gray frames),
         at the color view's size (the feature size unless
         ``TrackerConfig.color_size`` says otherwise); input of the color view.
     raw : (n, fh, fw) float32 or None
         The gray frame *before* Tan-Triggs, at the feature size; input of the
-        HOG and LBP views when they are asked for ``plane="gray"``. None when
-        no view reads it.
+        HOG and LBP views when they are asked for ``plane="gray"``.
 
-    Arrays are converted to C-contiguous float32 (no copy when they already
-    are); shapes are checked, values are not.
+    An array no view reads may be None (a view that reads it says so); at
+    least one is given. Arrays are converted to float32 (no copy when they
+    already are, whatever their memory layout: a view that needs C order makes
+    it); shapes are checked, values are not.
     """
 
-    intensity: np.ndarray
+    intensity: np.ndarray | None
     gray: np.ndarray | None
-    color: np.ndarray
+    color: np.ndarray | None
     raw: np.ndarray | None = None
 
     def __post_init__(self):
-        intensity = _as_float32("intensity", self.intensity, 3, "(n, th, tw)")
-        color = _as_float32("color", self.color, 4, "(n, fh, fw, C)")
-        n = intensity.shape[0]
+        given = {}
+        for name, (ndim, layout) in _LAYOUTS.items():
+            value = getattr(self, name)
+            if value is not None:
+                given[name] = _as_float32(name, value, ndim, layout)
+                object.__setattr__(self, name, given[name])
+        if not given:
+            raise ValueError("Patches need at least one array of patches")
+        first, n = next((name, a.shape[0]) for name, a in given.items())
         if n < 1:
             raise ValueError("Patches need at least one patch (n >= 1)")
-        if color.shape[0] != n:
-            raise ValueError(
-                f"Patches arrays disagree on the number of patches n: intensity {n}, color {color.shape[0]}"
-            )
-        if min(intensity.shape[1:]) < 1 or min(color.shape[1:3]) < 1:
-            raise ValueError(f"empty patches: intensity {intensity.shape}, color {color.shape}")
-        if color.shape[3] not in (1, 3):
-            raise ValueError(f"Patches.color must have C = 3 (RGB) or C = 1 (gray) channels, got {color.shape[3]}")
-        size = None  # the feature size, shared by gray and raw
-        for name in ("gray", "raw"):
-            value = getattr(self, name)
-            if value is None:
-                continue
-            plane = _as_float32(name, value, 3, "(n, fh, fw)")
-            if plane.shape[0] != n:
+        for name, a in given.items():
+            if a.shape[0] != n:
                 raise ValueError(
-                    f"Patches arrays disagree on the number of patches n: intensity {n}, {name} {plane.shape[0]} "
+                    f"Patches arrays disagree on the number of patches n: {first} {n}, {name} {a.shape[0]} "
                     "(one patch per candidate)"
                 )
-            if size is not None and plane.shape != size:
-                raise ValueError(
-                    f"Patches.{name} has shape {plane.shape} but Patches.gray {size}; "
-                    "both are warped at the feature size"
-                )
-            size = plane.shape
-            object.__setattr__(self, name, plane)
-        object.__setattr__(self, "intensity", intensity)
-        object.__setattr__(self, "color", color)
+            if min(a.shape[1:3]) < 1:
+                raise ValueError(f"empty patches: Patches.{name} has shape {a.shape}")
+        if "color" in given and given["color"].shape[3] not in (1, 3):
+            raise ValueError(
+                f"Patches.color must have C = 3 (RGB) or C = 1 (gray) channels, got {given['color'].shape[3]}"
+            )
+        if "gray" in given and "raw" in given and given["raw"].shape != given["gray"].shape:
+            raise ValueError(
+                f"Patches.raw has shape {given['raw'].shape} but Patches.gray {given['gray'].shape}; "
+                "both are warped at the feature size"
+            )
 
     @property
     def n(self) -> int:
         """Number of patches."""
-        return self.intensity.shape[0]
+        return next(a for a in (self.intensity, self.gray, self.color, self.raw) if a is not None).shape[0]
 
-    def subset(self, index) -> Patches:
-        """The patches selected by ``index`` (an int, slice, mask or index array)."""
+    def subset(self, index, keep=None) -> Patches:
+        """The patches selected by ``index`` (an int, slice, mask or index array),
+        of the arrays named in ``keep`` only (the others None; all when None)."""
         index = np.atleast_1d(np.arange(self.n)[index])
-        gray = None if self.gray is None else self.gray[index]
-        raw = None if self.raw is None else self.raw[index]
-        return Patches(self.intensity[index], gray, self.color[index], raw)
+        arrays = {}
+        for name in _LAYOUTS:
+            value = getattr(self, name)
+            arrays[name] = None if value is None or (keep is not None and name not in keep) else value[index]
+        return Patches(**arrays)
 
     def joined(self, other: Patches) -> Patches:
         """These patches followed by ``other``'s (the same sizes)."""
