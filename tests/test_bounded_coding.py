@@ -89,6 +89,18 @@ def test_observe_probes_are_coded_but_change_nothing():
     np.testing.assert_allclose(with_probes.likelihood[:-2], without.likelihood, rtol=1e-12)
 
 
+def _assert_keeps_the_rule(lazy, full, eps):
+    """``lazy`` (deferred views) chose as ``full`` (every candidate coded): the same
+    best candidate, the same codes where coded (always complete), and the skipped
+    candidates' exact likelihoods within eps of the best."""
+    assert lazy.complete[lazy.coded].all()
+    best = int(np.argmax(full.likelihood))
+    assert int(np.argmax(lazy.likelihood)) == best
+    np.testing.assert_allclose(lazy.residual[lazy.coded], full.residual[lazy.coded], atol=1e-12)
+    skipped = ~lazy.coded
+    assert skipped.any() and full.likelihood[skipped].sum() <= eps * full.likelihood[best]
+
+
 def test_observe_with_deferred_views_keeps_the_rule():
     """The last view computed only where the bounds need it: the same best candidate
     and codes, every skipped candidate's likelihood within the rule's eps, and
@@ -107,12 +119,7 @@ def test_observe_with_deferred_views_keeps_the_rule():
     assert len(set(computed.tolist())) == len(computed)  # each candidate asked at most once
     assert 16 <= len(computed) < 60  # the first pass, and not every candidate
     np.testing.assert_array_equal(np.sort(computed), np.flatnonzero(lazy.complete))
-    assert lazy.complete[lazy.coded].all()
-    best = int(np.argmax(full.likelihood))
-    assert int(np.argmax(lazy.likelihood)) == best
-    np.testing.assert_allclose(lazy.residual[lazy.coded], full.residual[lazy.coded], atol=1e-12)
-    skipped = ~lazy.coded
-    assert skipped.any() and full.likelihood[skipped].sum() <= eps * full.likelihood[best]
+    _assert_keeps_the_rule(lazy, full, eps)
     # the views returned: every view where computed, zero columns elsewhere
     np.testing.assert_array_equal(lazy.views[2][:, lazy.complete], X[2][:, lazy.complete])
     assert not lazy.views[2][:, ~lazy.complete].any()
@@ -151,12 +158,7 @@ def test_observe_computes_deferred_views_in_order_each_where_still_needed():
     assert len(set(first.tolist())) == len(first) and len(set(second.tolist())) == len(second)
     assert 16 <= len(second) < len(first) < 80  # this instance stops some candidates after view 2
     np.testing.assert_array_equal(np.sort(second), np.flatnonzero(lazy.complete))
-    assert lazy.complete[lazy.coded].all()
-    best = int(np.argmax(full.likelihood))
-    assert int(np.argmax(lazy.likelihood)) == best
-    np.testing.assert_allclose(lazy.residual[lazy.coded], full.residual[lazy.coded], atol=1e-12)
-    skipped = ~lazy.coded
-    assert skipped.any() and full.likelihood[skipped].sum() <= eps * full.likelihood[best]
+    _assert_keeps_the_rule(lazy, full, eps)
     assert np.all(lazy.bound <= full.residual + 1e-9)
     with pytest.raises(ValueError, match="deferred"):
         observe(X[:2], D, _code, alpha=30.0, eps=eps, deferred=[stage(0)])  # view 3 has no stage
@@ -176,11 +178,8 @@ def test_observe_adds_a_deferred_views_offset_when_it_is_computed():
         return X[2][:, idx], parts[1, idx]
 
     lazy = observe(X[:2], D, _code, alpha=30.0, eps=eps, offset=parts[0], deferred=[deferred])
-    best = int(np.argmax(full.likelihood))
-    assert int(np.argmax(lazy.likelihood)) == best
+    _assert_keeps_the_rule(lazy, full, eps)
     np.testing.assert_allclose(lazy.likelihood[lazy.coded], full.likelihood[lazy.coded], rtol=1e-10)
-    skipped = ~lazy.coded
-    assert skipped.any() and full.likelihood[skipped].sum() <= eps * full.likelihood[best]
     # without its deferred part the offset would make the coded likelihoods too high
     early = observe(X[:2], D, _code, alpha=30.0, eps=eps, offset=parts[0], deferred=[lambda i: (X[2][:, i], None)])
     assert np.all(early.likelihood[early.coded] > full.likelihood[early.coded])
