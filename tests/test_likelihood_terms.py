@@ -170,10 +170,15 @@ def test_anchor_term_moves_the_boxes_only_when_on(demo):
         TrackerConfig(anchor_weight=-1.0)
 
 
-def test_background_term_views_must_not_be_deferred(demo):
-    with pytest.raises(ValueError, match="deferred_views"):  # HOG is a term view of the background term
-        TrackerConfig(deferred_views=("hog", "lbp"), background_weight=0.5)
+def test_background_term_views_are_never_deferred(demo):
+    """The background term needs its views for every candidate: with it on, HOG (one
+    of them) is computed for all, LBP alone deferred."""
     frames, gt = demo
+    t = Tracker(TrackerConfig(deferred_views=("hog", "lbp"), background_weight=0.5, n_particles=60, seed=1))
+    t.init(frames[0], gt[0])
+    assert TrackerConfig().deferred_views == ("hog", "lbp") and t._n_first == 3
+    _, detail = t.update_detailed(frames[1])
+    assert (detail.observation.views[2] != 0).any(axis=0).all()  # HOG for every candidate
     for cfg in (
         TrackerConfig(deferred_views=("hog", "lbp"), term_views=("intensity", "color"), background_weight=0.5),
         TrackerConfig(deferred_views=("hog", "lbp"), n_particles=60, seed=1),  # the anchor term's part deferred

@@ -395,11 +395,12 @@ class Tracker:
         self._reads = {view: {array_of[p] for p in read[view]} | ({view} & {"intensity", "color"}) for view in read}
         # the views from this index on are computed only where the bounds need them
         n_first = len(cfg.views)
-        while n_first > 0 and cfg.views[n_first - 1] in cfg.deferred_views:
+        # (the background term's views are needed for every candidate: never deferred while it is on)
+        eager = set(cfg.term_views) if cfg.background_weight else set()
+        while n_first > 0 and cfg.views[n_first - 1] in set(cfg.deferred_views) - eager:
             n_first -= 1
         self._n_first = n_first if n_first > 0 and self._prune_eps(cfg.n_particles) > 0 else len(cfg.views)
-        # the views of the background and anchor terms (config.term_views; deferred only
-        # without the background term, whose measure is not a sum over the views)
+        # the views of the background and anchor terms (config.term_views)
         self._term_index = [cfg.views.index(v) for v in cfg.term_views if v in cfg.views]
         self._rng = np.random.default_rng(cfg.seed)
         self._state = box_to_affine(wb)
@@ -522,8 +523,8 @@ class Tracker:
                 self._rng.bit_generator.state = rng_state
                 self._frame_index -= 1
                 raise
-        obs, X = self._observe(prepared, probe_planes, particles, probe_states, plane_scale)
-        return self._decide(particles, obs, X, probe_boxes, prepared, plane_scale)
+        obs, views_of = self._observe(prepared, probe_planes, particles, probe_states, plane_scale)
+        return self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale)
 
     def _propagate(self) -> np.ndarray:
         """This frame's ``(n, 6)`` particles: the last frame's resampled by their
@@ -554,8 +555,8 @@ class Tracker:
 
     def _observe(self, prepared, probe_planes, particles, probe_states, plane_scale: float):
         """Views, codes and likelihoods of the particles followed by the probes:
-        ``(Observation, X)``, ``X`` the K views ``(d_k, n + m)`` float32 (a
-        deferred view's columns zero where it was not computed)."""
+        ``(Observation, views_of)``, ``views_of(i)`` the K views ``(d_k,)``
+        float32 of candidate i (a deferred view zero where it was not computed)."""
         cfg = self.config
         n = len(particles)
         states = np.concatenate([particles, probe_states])
@@ -573,16 +574,14 @@ class Tracker:
         with self._timed("motion"):
             valid = inside_fraction(states, work_shape) >= 0.5
         is_probe = np.arange(len(states)) >= n
-        X_later = [
-            np.zeros((Dk.shape[0], len(states)), dtype=np.float32) for Dk in self._templates.dictionaries[len(now) :]
-        ]
+        blocks: dict[int, list] = {k: [] for k in range(len(now), len(cfg.views))}  # (idx, view) computed
 
         def stage(k: int):
             """View k (deferred) of some candidates, weighted, and its part of their anchor term."""
 
             def compute(idx):
                 (view,) = self._extract(patches.subset(idx, self._reads.get(cfg.views[k])), [cfg.views[k]])
-                X_later[k - len(now)][:, idx] = view
+                blocks[k].append((idx, view))
                 (weighted,) = self._weighted([view], first=k)
                 if not (cfg.anchor_weight and k in self._term_index):
                     return weighted, None
@@ -607,7 +606,16 @@ class Tracker:
             bases=self._bases,
             offset=offset,
         )
-        return obs, X + X_later
+
+        def views_of(i: int) -> list:
+            """The K views ``(d_k,)`` float32 of candidate i (a deferred one zero where not computed)."""
+            out = [Xk[:, i] for Xk in X]
+            for k, computed in blocks.items():
+                hits = [view[:, j] for idx, view in computed for j in np.flatnonzero(idx == i)]
+                out.append(hits[0] if hits else np.zeros(self._templates.dictionaries[k].shape[0], np.float32))
+            return out
+
+        return obs, views_of
 
     def _offsets(self, X, prepared, probe_planes, particles, probe_states, plane_scale: float):
         """Each candidate's terms added to its residual (background, anchor,
@@ -631,7 +639,7 @@ class Tracker:
             offset = fg if offset is None else offset + fg
         return offset
 
-    def _decide(self, particles, obs, X, probe_boxes, prepared, plane_scale: float):
+    def _decide(self, particles, obs, views_of, probe_boxes, prepared, plane_scale: float):
         """The state from the likelihoods: the best particle (or their mean),
         the template update and the next frame's resampling weights."""
         cfg = self.config
@@ -643,9 +651,10 @@ class Tracker:
             result = TrackResult(self._box, 0.0, float("inf"), True, None, self._frame_index)
             return result, FrameDetail(particles, obs, None, probe_boxes, self._scale, None, self._reshape())
         best = int(np.argmax(p))
+        views = views_of(best)
         with self._timed("update"):
             decision = self._templates.update(
-                [Xk[:, best] for Xk in X],
+                views,
                 obs.C[:, :, best],
                 [Ek[:, best] for Ek in obs.E],
                 update_angle=cfg.update_angle,
@@ -672,7 +681,7 @@ class Tracker:
             template_replaced=decision.replaced,
             frame_index=self._frame_index,
         )
-        best_views = [Xk[:, best].copy() for Xk in X]
+        best_views = [v.copy() for v in views]
         return result, FrameDetail(particles, obs, best, probe_boxes, self._scale, best_views, self._reshape())
 
     def _reshape(self) -> tuple[float, float]:
