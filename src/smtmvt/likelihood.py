@@ -158,7 +158,9 @@ def observe(
         they cannot change which other candidates are coded).
     timed : optional ``timed(stage)`` context manager factory; the solver's
         time is reported as ``"solve"``, the rest (bounds, residuals,
-        likelihoods) as ``"likelihood"``.
+        likelihoods, the rule's bookkeeping) as ``"likelihood"``. Blocks of one
+        stage may nest (a factory that adds up times should count the outer
+        one only, as :class:`smtmvt.Tracker`'s does).
     deferred : optional list of ``K - len(X)`` callables, one per view after
         ``X``'s (in ``D``'s order), for views computed only where needed (see
         the module docstring; ``X`` then holds the first views only, ``D`` all
@@ -183,7 +185,8 @@ def observe(
     valid = np.ones(n, dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
     always = np.zeros(n, dtype=bool) if always is None else np.asarray(always, dtype=bool)
     shift = np.zeros(n) if offset is None else np.asarray(offset, dtype=np.float64).reshape(n)
-    coding = _Coding(X, D, code, eps, timed, deferred, bases, shift)
+    with timed("likelihood"):
+        coding = _Coding(X, D, code, eps, timed, deferred, bases, shift)
     if eps <= 0 or not valid.any():
         coding.run(valid | always)
     else:
@@ -208,24 +211,37 @@ def _code_bounded(coding: _Coding, valid, always, alpha: float, eps: float) -> N
     largest bounds whose likelihood bounds sum to at most ``eps`` times the best
     likelihood found, computing the deferred views (one at a time) until that
     tail is stable."""
-    n = len(valid)
-    bound, shift = coding.bound, coding.shift  # both rise as deferred views are computed
-    order = np.flatnonzero(valid)[np.argsort((bound + shift)[valid], kind="stable")]
-    first = np.zeros(n, dtype=bool)
-    first[order[:FIRST_PASS]] = True
+    with coding.timed("likelihood"):
+        first = np.zeros(len(valid), dtype=bool)
+        first[_by_bound(coding, valid)[:FIRST_PASS]] = True
     coding.run(first | always)
-    best = np.nanmin(np.where(valid & coding.coded, coding.residual + shift, np.nan))
+    best = np.nanmin(np.where(valid & coding.coded, coding.residual + coding.shift, np.nan))
     while True:
-        # bounds relative to the best likelihood: u_i / p* = exp(-alpha (b_i - r*))
-        order = np.flatnonzero(valid)[np.argsort((bound + shift)[valid], kind="stable")]
-        rest = order[~coding.coded[order]]
-        u = np.exp(-alpha * (bound[rest] + shift[rest] - best))
-        skipped_mass = np.cumsum(u[::-1])[::-1]  # sum of the bounds from each position to the end
-        needed = np.isin(np.arange(n), rest[skipped_mass > eps])
+        with coding.timed("likelihood"):
+            needed = _outside_tail(coding, valid, alpha, eps, best)
         if coding.have[needed].all():
             break
         coding.advance(needed)  # their bounds rise: take the tail again
     coding.run(needed)
+
+
+def _by_bound(coding: _Coding, valid) -> np.ndarray:
+    """The valid candidates' indices by increasing bound (with the offset), ties in index order."""
+    return np.flatnonzero(valid)[np.argsort((coding.bound + coding.shift)[valid], kind="stable")]
+
+
+def _outside_tail(coding: _Coding, valid, alpha: float, eps: float, best: float) -> np.ndarray:
+    """(n,) bool, the uncoded valid candidates outside the tail of largest bounds
+    whose likelihood bounds sum to at most ``eps`` times the best likelihood
+    ``exp(-alpha best)`` (bounds as they are now, partial where views are deferred)."""
+    order = _by_bound(coding, valid)
+    rest = order[~coding.coded[order]]
+    # bounds relative to the best likelihood: u_i / p* = exp(-alpha (b_i - r*))
+    u = np.exp(-alpha * (coding.bound[rest] + coding.shift[rest] - best))
+    skipped_mass = np.cumsum(u[::-1])[::-1]  # sum of the bounds from each position to the end
+    needed = np.zeros(len(valid), dtype=bool)
+    needed[rest[skipped_mass > eps]] = True
+    return needed
 
 
 class _Coding:
