@@ -23,6 +23,7 @@ Usage (like OpenCV's trackers)::
 
 from __future__ import annotations
 
+import functools
 import time
 from collections import defaultdict
 from contextlib import contextmanager
@@ -129,6 +130,42 @@ class FrameDetail:
     def probe_likelihood(self) -> np.ndarray:
         """(m,) likelihoods of the probes (comparable with ``observation.likelihood[:n]``)."""
         return self.observation.likelihood[len(self.particles) :]
+
+
+class _DeferredViews:
+    """The views of one frame's candidates that are computed only where the
+    bounded coding needs them (``config.deferred_views``): one stage per view
+    for :func:`smtmvt.likelihood.observe`, each returning the view of some
+    candidates (weighted) and its part of their anchor term; the blocks
+    computed are kept, so that any candidate's views can be read back."""
+
+    def __init__(self, tracker: Tracker, patches: Patches, X: list) -> None:
+        self._tracker, self._patches, self._X = tracker, patches, X
+        #: deferred view index k -> [(candidate indices, (d_k, m) view)], in the order computed
+        self.blocks: dict[int, list] = {k: [] for k in range(len(X), len(tracker.config.views))}
+
+    def stages(self) -> list:
+        """``observe``'s ``deferred``: one ``stage(idx) -> (view, offset)`` per deferred view."""
+        return [functools.partial(self._compute, k) for k in self.blocks]
+
+    def _compute(self, k: int, idx: np.ndarray):
+        t = self._tracker
+        cfg = t.config
+        (view,) = t._extract(self._patches.subset(idx, t._reads.get(cfg.views[k])), [cfg.views[k]])
+        self.blocks[k].append((idx, view))
+        (weighted,) = t._weighted([view], first=k)
+        if not (cfg.anchor_weight and k in t._term_index):
+            return weighted, None
+        first = t._weighted([t._templates.dictionaries[k][:, 0]], first=k)
+        return weighted, anchor_offsets([weighted], first, cfg.anchor_weight)
+
+    def views_of(self, i: int) -> list:
+        """The K views ``(d_k,)`` float32 of candidate i (a deferred one zero where not computed)."""
+        out = [Xk[:, i] for Xk in self._X]
+        for k, computed in self.blocks.items():
+            hits = [view[:, j] for idx, view in computed for j in np.flatnonzero(idx == i)]
+            out.append(hits[0] if hits else np.zeros(self._tracker._templates.dictionaries[k].shape[0], np.float32))
+        return out
 
 
 class Tracker:
@@ -565,7 +602,7 @@ class Tracker:
         patches = self._patches(prepared, particles, plane_scale)
         if len(probe_states):
             patches = patches.joined(self._patches(probe_planes, probe_states, plane_scale))
-        # views computed for every candidate, and the views deferred (likelihood.observe)
+        # the views computed for every candidate; the deferred ones as the bounds need them
         now = cfg.views[: self._n_first]
         X = self._extract(patches, now)
         with self._timed("likelihood"):
@@ -574,22 +611,7 @@ class Tracker:
         with self._timed("motion"):
             valid = inside_fraction(states, work_shape) >= 0.5
         is_probe = np.arange(len(states)) >= n
-        blocks: dict[int, list] = {k: [] for k in range(len(now), len(cfg.views))}  # (idx, view) computed
-
-        def stage(k: int):
-            """View k (deferred) of some candidates, weighted, and its part of their anchor term."""
-
-            def compute(idx):
-                (view,) = self._extract(patches.subset(idx, self._reads.get(cfg.views[k])), [cfg.views[k]])
-                blocks[k].append((idx, view))
-                (weighted,) = self._weighted([view], first=k)
-                if not (cfg.anchor_weight and k in self._term_index):
-                    return weighted, None
-                first = self._weighted([self._templates.dictionaries[k][:, 0]], first=k)
-                return weighted, anchor_offsets([weighted], first, cfg.anchor_weight)
-
-            return compute
-
+        later = _DeferredViews(self, patches, X)
         dictionaries = self._weighted(self._templates.dictionaries)
         if self._bases is None:  # the templates changed
             self._bases = [range_basis(Dk) for Dk in dictionaries]
@@ -602,20 +624,11 @@ class Tracker:
             eps=self._prune_eps(n),
             always=is_probe,
             timed=self._timed,
-            deferred=[stage(k) for k in range(len(now), len(cfg.views))],
+            deferred=later.stages(),
             bases=self._bases,
             offset=offset,
         )
-
-        def views_of(i: int) -> list:
-            """The K views ``(d_k,)`` float32 of candidate i (a deferred one zero where not computed)."""
-            out = [Xk[:, i] for Xk in X]
-            for k, computed in blocks.items():
-                hits = [view[:, j] for idx, view in computed for j in np.flatnonzero(idx == i)]
-                out.append(hits[0] if hits else np.zeros(self._templates.dictionaries[k].shape[0], np.float32))
-            return out
-
-        return obs, views_of
+        return obs, later.views_of
 
     def _offsets(self, X, prepared, probe_planes, particles, probe_states, plane_scale: float):
         """Each candidate's terms added to its residual (background, anchor,
@@ -623,7 +636,7 @@ class Tracker:
         cfg = self.config
         offset = None
         # the term views at hand: a deferred one brings its part of the anchor term when it is
-        # computed (the stages of _observe); none is deferred with the background term
+        # computed (_DeferredViews); none is deferred with the background term
         X_terms = self._terms_of(X) if cfg.anchor_weight or cfg.background_weight else []
         if self._background is not None and X_terms:
             offset = background_offsets(X_terms, self._background, cfg.background_weight, cfg.background_measure)
