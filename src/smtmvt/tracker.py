@@ -335,12 +335,12 @@ class Tracker:
         views = self._extract(self._patches(frame, ring, plane_scale), [cfg.views[i] for i in self._term_index])
         return self._weighted(views, index=self._term_index)
 
-    def _terms_of(self, views: list, first: int = 0) -> list:
-        """The term views (``config.term_views``) among ``views`` (views ``first,
-        first + 1, ...`` of ``config.views``, in that order), weighted as by
-        :meth:`_weighted`."""
-        index = [i for i in self._term_index if first <= i < first + len(views)]
-        return self._weighted([views[i - first] for i in index], index=index)
+    def _terms_of(self, views: list) -> list:
+        """The term views (``config.term_views``) among ``views`` (the first
+        ``len(views)`` of ``config.views``, in that order: the deferred ones may
+        be left out), weighted as by :meth:`_weighted`."""
+        index = [i for i in self._term_index if i < len(views)]
+        return self._weighted([views[i] for i in index], index=index)
 
     def _weighted(self, views: list, first: int = 0, index=None) -> list:
         """``views`` (views ``first, first + 1, ...`` of ``config.views``, or the
