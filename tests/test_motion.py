@@ -119,3 +119,91 @@ def test_aspect_std_zero_keeps_the_aspect_and_the_random_stream():
     # the same draws: the translation is unchanged, only the shape noise is recombined
     np.testing.assert_array_equal(fixed[:, 4:], free[:, 4:])
     np.testing.assert_allclose(fixed[:, 0] / p0[:, 0], free[:, 0] / p0[:, 0], rtol=1e-12)
+
+
+def test_translation_distance_is_in_standard_deviations():
+    from smtmvt.motion import translation_distance
+
+    states = np.array([[1.0, 0, 0, 1.0, 10.0, 20.0], [2.0, 0, 0, 2.0, 13.0, 16.0]])
+    d = translation_distance(states, (10.0, 20.0), (3.0, 2.0))
+    np.testing.assert_allclose(d, [0.0, (3 / 3) ** 2 + (4 / 2) ** 2])
+    # a walk that does not move along x: only a state on the prediction is at a finite distance
+    np.testing.assert_array_equal(translation_distance(states, (10.0, 20.0), (0.0, 2.0)), [0.0, np.inf])
+
+
+def test_motion_term_weighs_each_candidate_by_the_random_walks_density():
+    """On the first frame (no velocity yet) the prediction is the first box: a
+    probe moved (dx, dy) pixels keeps its residual, and its likelihood falls by
+    exp(-w d / 2), d = (dx^2 + dy^2) / (std * sc)^2."""
+    from smtmvt import Tracker, TrackerConfig
+    from smtmvt.demo import make_demo_sequence
+
+    demo = make_demo_sequence(n_frames=2)
+    box = np.asarray(demo.groundtruth[0], dtype=np.float64)
+    moves = np.array([[0.0, 0.0], [6.0, 0.0], [0.0, -9.0], [4.0, 5.0]])
+    probes = np.c_[box[:2] + moves, np.tile(box[2:], (len(moves), 1))]
+    cfg = TrackerConfig(n_particles=50, seed=1)
+    assert cfg.motion_weight == 1.0 and TrackerConfig.paper().motion_weight == 0.0
+
+    def probe(weight):
+        t = Tracker(cfg.replace(motion_weight=weight))
+        t.init(demo.frames[0], demo.groundtruth[0])
+        _, detail = t.update_detailed(demo.frames[1], probes=probes)
+        return detail.observation.residual[cfg.n_particles :], detail.probe_likelihood
+
+    r0, p0 = probe(0.0)
+    r2, p2 = probe(2.0)
+    np.testing.assert_array_equal(r0, r2)
+    sc = affine_scale(box_to_affine(box[None]))[0]
+    d = (moves**2).sum(1) / (cfg.affine_std[4] * sc) ** 2
+    assert d[1:].min() > 0.1  # the moves are a fair part of a standard deviation
+    np.testing.assert_allclose(np.log(p2 / p0), -2.0 * d / 2, rtol=1e-9, atol=1e-12)
+    with pytest.raises(ValueError, match="motion_weight"):
+        TrackerConfig(motion_weight=-1.0)
+
+
+def test_motion_term_weighs_each_particle_by_its_own_step():
+    """A particle's motion term is the random walk's density of its own step,
+    from its parent (on the first frame every parent is the first state, with
+    no velocity yet): among the particles coded with and without the term, the
+    residuals agree and the likelihoods differ by exp(-w d / 2)."""
+    from smtmvt import Tracker, TrackerConfig
+    from smtmvt.demo import make_demo_sequence
+
+    demo = make_demo_sequence(n_frames=2)
+    cfg = TrackerConfig(n_particles=60, seed=4)
+
+    def first_frame(weight):
+        t = Tracker(cfg.replace(motion_weight=weight))
+        t.init(demo.frames[0], demo.groundtruth[0])
+        return t.update_detailed(demo.frames[1])[1]
+
+    plain, weighed = first_frame(0.0), first_frame(1.5)
+    np.testing.assert_array_equal(plain.particles, weighed.particles)
+    start = box_to_affine(np.asarray(demo.groundtruth[0], dtype=np.float64)[None])[0]
+    d = (((weighed.particles[:, 4:] - start[4:]) / (cfg.affine_std[4] * affine_scale(start[None])[0])) ** 2).sum(1)
+    both = plain.observation.coded & weighed.observation.coded
+    assert both.sum() >= 5 and np.ptp(d[both]) > 0.2  # steps of different lengths
+    np.testing.assert_array_equal(plain.observation.residual[both], weighed.observation.residual[both])
+    ratio = weighed.observation.likelihood[both] / plain.observation.likelihood[both]
+    np.testing.assert_allclose(np.log(ratio), -1.5 * d[both] / 2, rtol=1e-9, atol=1e-12)
+
+
+def test_a_particles_step_is_its_own_random_draw():
+    """After a frame (a velocity, resampled parents of several kinds) each
+    particle's step from its own prediction, in standard deviations, is the
+    standard normal pair the random walk drew for its translation."""
+    from smtmvt import Tracker, TrackerConfig
+    from smtmvt.demo import make_demo_sequence
+    from smtmvt.motion import translation_distance
+
+    demo = make_demo_sequence(n_frames=3)
+    t = Tracker(TrackerConfig(n_particles=80, seed=2))
+    t.init(demo.frames[0], demo.groundtruth[0])
+    t.update(demo.frames[1])
+    assert np.abs(t._velocity).max() > 0.1  # the prediction is moved
+    draws = np.random.Generator(type(t._rng.bit_generator)())
+    draws.bit_generator.state = t._rng.bit_generator.state
+    moved = t._propagate()
+    noise = draws.standard_normal(moved.shape)
+    np.testing.assert_allclose(translation_distance(moved, *t._steps), (noise[:, 4:] ** 2).sum(1), rtol=1e-9)

@@ -16,7 +16,7 @@ import numpy as np
 
 from .geometry import affine_scale
 
-__all__ = ["propagate", "pull_shape", "resample"]
+__all__ = ["propagate", "pull_shape", "resample", "translation_distance"]
 
 
 def propagate(
@@ -141,3 +141,30 @@ def resample(params, weights, n: int) -> np.ndarray:
     if len(idx) < n:
         idx = np.concatenate([idx, np.full(n - len(idx), best)])
     return p[idx].copy()
+
+
+def translation_distance(params, predicted, std) -> np.ndarray:
+    """Squared distance of each state's translation from its predicted one, in
+    standard deviations of the random walk: ``sum_j ((t_ij - p_ij) / std_ij)^2``.
+
+    Parameters
+    ----------
+    params : (n, 6) affine states.
+    predicted : (2,) or (n, 2) predicted translations ``(tx, ty)``, pixels
+        (one for all states, or one each: a particle's parent moved by the
+        velocity term).
+    std : (2,) or (n, 2) translation standard deviations, pixels (>= 0).
+
+    Returns
+    -------
+    (n,) float64 >= 0; ``exp(-d / 2)`` is the random walk's Gaussian density
+    of the translation, up to a constant. Along an axis of std 0 (a walk that
+    does not move) a state on the prediction is at distance 0 and any other
+    at infinity.
+    """
+    p = np.atleast_2d(np.asarray(params, dtype=np.float64))
+    diff = p[:, 4:] - np.asarray(predicted, dtype=np.float64)
+    std = np.broadcast_to(np.asarray(std, dtype=np.float64), diff.shape)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = np.where(std > 0, diff / np.where(std > 0, std, 1.0), np.where(diff == 0, 0.0, np.inf))
+    return (z**2).sum(1)

@@ -7,9 +7,10 @@ Data flows one way, one stage per module::
           --warp--------> candidate patches, one batched remap per plane
           --features----> K views, (d_k, n) normalized columns
           --solvers-----> codes C (K, N, n) and outliers E over the templates
-          --likelihood--> p_i = exp(-alpha * (sum_k ||D^k c_i^k - x_i^k||^2 + a_i + f_i))
+          --likelihood--> p_i = exp(-alpha * (sum_k ||D^k c_i^k - x_i^k||^2 + a_i + f_i + m_i))
                           (a_i: the anchor term, smtmvt.anchor; f_i: the
-                          foreground term, smtmvt.foreground)
+                          foreground term, smtmvt.foreground; m_i: the motion
+                          term, smtmvt.motion.translation_distance)
           --state-------> best candidate = result; template update; resampling
 
 Usage (like OpenCV's trackers)::
@@ -41,7 +42,7 @@ from .features import Patches, extract_views, intensity_template_size
 from .foreground import RING, box_contrast, foreground_map, foreground_model, ring_window
 from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine, box_with_aspect
 from .likelihood import Observation, observe
-from .motion import propagate, pull_shape, resample
+from .motion import propagate, pull_shape, resample, translation_distance
 from .preprocess import (
     PreparedFrame,
     plane_window,
@@ -577,7 +578,12 @@ class Tracker:
             std = cfg.affine_std
             if self._expand > 1.0:  # config.search_expand: a wider search after a poorly explained frame
                 std = (*std[:4], std[4] * self._expand, std[5] * self._expand)
-            return propagate(particles, std, self._rng, shift, self._spread, cfg.translation_power, cfg.aspect_std)
+            moved = propagate(particles, std, self._rng, shift, self._spread, cfg.translation_power, cfg.aspect_std)
+            # each particle's own prediction (its parent moved by the velocity term) and the
+            # random walk's translation std there, for the motion term
+            predicted = particles[:, 4:] + (0.0 if shift is None else shift)
+            self._steps = (predicted, np.asarray(std[4:]) * affine_scale(particles)[:, None] ** cfg.translation_power)
+            return moved
 
     def _prepare_candidates(self, frame, particles, probe_states, plane_scale: float):
         """The frame's planes for the particles, and those for the probes (the
@@ -644,6 +650,12 @@ class Tracker:
             first = self._terms_of([Dk[:, 0] for Dk in self._templates.dictionaries[: len(X)]])
             anchor = anchor_offsets(X_terms, first, cfg.anchor_weight)
             offset = anchor if offset is None else offset + anchor
+        if cfg.motion_weight:
+            d2 = translation_distance(particles, *self._steps)
+            if len(probe_states):
+                d2 = np.concatenate([d2, self._probe_distance(probe_states)])
+            motion = cfg.motion_weight * 0.5 * d2 / cfg.alpha
+            offset = motion if offset is None else offset + motion
         if cfg.foreground_weight:
             contrast = self._contrast(prepared, particles, plane_scale)
             if len(probe_states):
@@ -651,6 +663,17 @@ class Tracker:
             fg = cfg.foreground_weight * (1.0 - contrast)
             offset = fg if offset is None else offset + fg
         return offset
+
+    def _probe_distance(self, states: np.ndarray) -> np.ndarray:
+        """(m,) squared distance of each probe's translation from this frame's
+        prediction (the last state moved by the velocity term), in the random
+        walk's standard deviations at the last state's scale
+        (:func:`smtmvt.motion.translation_distance`): the motion term of a
+        probe, which has no parent particle."""
+        cfg = self.config
+        predicted = self._state[4:] + (cfg.velocity * self._velocity if cfg.velocity else 0.0)
+        std = np.asarray(cfg.affine_std[4:]) * affine_scale(self._state[None])[0] ** cfg.translation_power
+        return translation_distance(states, predicted, std)
 
     def _decide(self, particles, obs, views_of, probe_boxes, prepared, plane_scale: float):
         """The state from the likelihoods: the best particle (or their mean),
