@@ -16,7 +16,7 @@ import numpy as np
 
 from .geometry import affine_scale
 
-__all__ = ["propagate", "pull_shape", "resample", "translation_distance"]
+__all__ = ["propagate", "pull_shape", "resample", "translation_std", "translation_distance"]
 
 
 def propagate(
@@ -62,6 +62,7 @@ def propagate(
         p[:, 4:] += np.asarray(shift, dtype=np.float64)
     s = np.asarray(std, dtype=np.float64)
     sc = affine_scale(p)[:, None]
+    t_std = translation_std(p, s, translation_power)
     noise = rng.standard_normal(p.shape)
     if spread is not None:
         noise *= np.asarray(spread, dtype=np.float64).reshape(-1, 1)
@@ -74,7 +75,7 @@ def propagate(
         p[:, 3] *= np.exp(s[0] * noise[:, 0] + half)
     p[:, 1] += s[1] * sc[:, 0] * noise[:, 1]
     p[:, 2] += s[2] * sc[:, 0] * noise[:, 2]
-    p[:, 4:] += s[4:] * sc**translation_power * noise[:, 4:]
+    p[:, 4:] += t_std * noise[:, 4:]
     return p
 
 
@@ -141,6 +142,14 @@ def resample(params, weights, n: int) -> np.ndarray:
     if len(idx) < n:
         idx = np.concatenate([idx, np.full(n - len(idx), best)])
     return p[idx].copy()
+
+
+def translation_std(params, std, translation_power: float = 1.0) -> np.ndarray:
+    """The random walk's translation standard deviations at each state,
+    ``std[4:] * sc ** translation_power`` pixels (``sc`` the state's scale, see
+    :func:`propagate`), ``(n, 2)`` float64."""
+    p = np.atleast_2d(np.asarray(params, dtype=np.float64))
+    return np.asarray(std, dtype=np.float64)[4:] * affine_scale(p)[:, None] ** translation_power
 
 
 def translation_distance(params, predicted, std) -> np.ndarray:

@@ -42,7 +42,7 @@ from .features import Patches, extract_views, intensity_template_size
 from .foreground import RING, box_contrast, foreground_map, foreground_model, ring_window
 from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine, box_with_aspect
 from .likelihood import Observation, observe
-from .motion import propagate, pull_shape, resample, translation_distance
+from .motion import propagate, pull_shape, resample, translation_distance, translation_std
 from .preprocess import (
     PreparedFrame,
     plane_window,
@@ -582,7 +582,7 @@ class Tracker:
             # each particle's own prediction (its parent moved by the velocity term) and the
             # random walk's translation std there, for the motion term
             predicted = particles[:, 4:] + (0.0 if shift is None else shift)
-            self._steps = (predicted, np.asarray(std[4:]) * affine_scale(particles)[:, None] ** cfg.translation_power)
+            self._steps = (predicted, translation_std(particles, std, cfg.translation_power))
             return moved
 
     def _prepare_candidates(self, frame, particles, probe_states, plane_scale: float):
@@ -672,8 +672,9 @@ class Tracker:
         probe, which has no parent particle."""
         cfg = self.config
         predicted = self._state[4:] + (cfg.velocity * self._velocity if cfg.velocity else 0.0)
-        std = np.asarray(cfg.affine_std[4:]) * affine_scale(self._state[None])[0] ** cfg.translation_power
-        return translation_distance(states, predicted, std)
+        return translation_distance(
+            states, predicted, translation_std(self._state, cfg.affine_std, cfg.translation_power)
+        )
 
     def _decide(self, particles, obs, views_of, probe_boxes, prepared, plane_scale: float):
         """The state from the likelihoods: the best particle (or their mean),
