@@ -207,3 +207,85 @@ def test_a_particles_step_is_its_own_random_draw():
     moved = t._propagate()
     noise = draws.standard_normal(moved.shape)
     np.testing.assert_allclose(translation_distance(moved, *t._steps), (noise[:, 4:] ** 2).sum(1), rtol=1e-9)
+
+
+@pytest.mark.parametrize("aspect_std", [None, 0.02])
+def test_scale_distance_recovers_the_walks_scale_draws(aspect_std):
+    """A state's scale step from its parent, in standard deviations, is the
+    pair of standard normal draws the random walk took for it (the two
+    diagonal terms, or the scale and the aspect with ``aspect_std``)."""
+    from smtmvt.motion import scale_distance
+
+    std = (0.01, 0.0005, 0.0005, 0.02, 4.0, 4.0)
+    parents = np.repeat(box_to_affine((10, 20, 30, 50))[None], 200, axis=0)
+    parents[:, 0] *= np.linspace(0.5, 2.0, 200)  # parents of different scales and aspects
+    moved = propagate(parents, std, np.random.default_rng(7), aspect_std=aspect_std)
+    noise = np.random.default_rng(7).standard_normal(parents.shape)
+    expected = noise[:, 0] ** 2 + noise[:, 3] ** 2
+    np.testing.assert_allclose(scale_distance(moved, parents, std, aspect_std), expected, rtol=1e-9)
+    # one parent for all; a walk that does not change the scale puts every other scale at infinity
+    assert scale_distance(parents[:2], parents[0], std)[0] == 0.0
+    assert scale_distance(parents[:2], parents[0], (0.0, 0, 0, 0.0, 4, 4)).tolist() == [0.0, np.inf]
+
+
+def test_scale_term_weighs_each_probe_by_its_scale_step():
+    """On the first frame a probe scaled by f about the first box's centre
+    keeps its residual, and its likelihood falls by exp(-w d / 2), d = 2 (log
+    f / std)^2 (both diagonal terms step by log f); the translation part of
+    the motion term is off."""
+    from smtmvt import Tracker, TrackerConfig
+    from smtmvt.demo import make_demo_sequence
+
+    demo = make_demo_sequence(n_frames=2)
+    box = np.asarray(demo.groundtruth[0], dtype=np.float64)
+    f = np.array([1.0, 1.02, 0.97, 1.05])
+    centre = box[:2] + box[2:] / 2
+    probes = np.c_[centre - np.outer(f, box[2:]) / 2, np.outer(f, box[2:])]
+    cfg = TrackerConfig(n_particles=50, seed=1, motion_weight=0.0)
+    assert cfg.scale_weight == 0.0 and TrackerConfig.paper().scale_weight == 0.0
+
+    def probe(weight):
+        t = Tracker(cfg.replace(scale_weight=weight))
+        t.init(demo.frames[0], demo.groundtruth[0])
+        _, detail = t.update_detailed(demo.frames[1], probes=probes)
+        return detail.observation.residual[cfg.n_particles :], detail.probe_likelihood
+
+    r0, p0 = probe(0.0)
+    r3, p3 = probe(3.0)
+    np.testing.assert_array_equal(r0, r3)
+    d = 2 * (np.log(f) / cfg.affine_std[0]) ** 2
+    np.testing.assert_allclose(np.log(p3 / p0), -3.0 * d / 2, rtol=1e-6, atol=1e-9)
+    with pytest.raises(ValueError, match="scale_weight"):
+        TrackerConfig(scale_weight=-1.0)
+
+
+def test_scale_term_weighs_each_particle_by_its_own_scale_step():
+    """After a frame (resampled parents of several scales) each particle's
+    scale term is the density of its own scale step: coded with and without
+    the term, the residuals agree and the likelihoods differ by exp(-w d / 2),
+    d the squared standard normal draws of its two diagonal terms."""
+    from smtmvt import Tracker, TrackerConfig
+    from smtmvt.demo import make_demo_sequence
+
+    demo = make_demo_sequence(n_frames=3)
+    cfg = TrackerConfig(n_particles=80, seed=2, alpha=5.0)  # a flatter likelihood: several parents survive
+
+    def second_frame(weight):
+        t = Tracker(cfg)
+        t.init(demo.frames[0], demo.groundtruth[0])
+        t.update(demo.frames[1])
+        t.config = cfg.replace(scale_weight=weight)  # the same particles and parents for both
+        draws = np.random.Generator(type(t._rng.bit_generator)())
+        draws.bit_generator.state = t._rng.bit_generator.state
+        detail = t.update_detailed(demo.frames[2])[1]
+        assert len(np.unique(t._parents[:, 0])) >= 3  # parents of several scales
+        return detail, draws.standard_normal((cfg.n_particles, 6))
+
+    (plain, noise), (weighed, _) = second_frame(0.0), second_frame(2.0)
+    np.testing.assert_array_equal(plain.particles, weighed.particles)
+    d = noise[:, 0] ** 2 + noise[:, 3] ** 2
+    both = plain.observation.coded & weighed.observation.coded
+    assert both.sum() >= 5 and np.ptp(d[both]) > 0.5
+    np.testing.assert_array_equal(plain.observation.residual[both], weighed.observation.residual[both])
+    ratio = weighed.observation.likelihood[both] / plain.observation.likelihood[both]
+    np.testing.assert_allclose(np.log(ratio), -2.0 * d[both] / 2, rtol=1e-7, atol=1e-10)
