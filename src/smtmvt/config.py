@@ -739,12 +739,6 @@ class TrackerConfig:
         [27]: 0.628 against 0.618 without, 18 sequences x 18 seeds); 0: the
         paper's choice. The std is the frame's (widened by
         ``search_expand`` when it is); ``narrow_scale`` is not applied.
-    scale_weight : float >= 0
-        Weight of the motion term's scale part, as ``motion_weight`` for the
-        translation: each particle's residual gains ``w d_i / (2 alpha)``,
-        ``d_i`` the squared length of its scale step from its parent in the
-        walk's standard deviations (:func:`smtmvt.motion.scale_distance`; a
-        probe's from the last state). 0: off (the default; being measured).
     term_views : tuple of str
         The views the anchor and background terms compare (those of ``views``
         among them; a term with none of them is 0). Default intensity, color
@@ -938,7 +932,6 @@ class TrackerConfig:
     anchor_weight: float = 1.0
     foreground_weight: float = 1.0
     motion_weight: float = 1.0
-    scale_weight: float = 0.0
     term_views: tuple = ("intensity", "color", "hog")
     feature_size: tuple = (32, 32)
     intensity_factor: float | None = None
@@ -1002,7 +995,6 @@ class TrackerConfig:
             "anchor_weight": self.anchor_weight >= 0,
             "foreground_weight": self.foreground_weight >= 0,
             "motion_weight": self.motion_weight >= 0,
-            "scale_weight": self.scale_weight >= 0,
             "estimate": self.estimate in ("best", "mean"),
             "fixed_templates": 1 <= int(self.fixed_templates) <= int(self.n_templates),
             "narrow_fraction": 0 <= self.narrow_fraction <= 1,
@@ -1072,7 +1064,6 @@ class TrackerConfig:
             anchor_weight=0.0,
             foreground_weight=0.0,
             motion_weight=0.0,
-            scale_weight=0.0,
             term_views=("intensity", "color", "hog"),
             feature_size=(32, 32),
             intensity_factor=None,

@@ -16,7 +16,7 @@ import numpy as np
 
 from .geometry import affine_scale
 
-__all__ = ["propagate", "pull_shape", "resample", "translation_std", "translation_distance", "scale_distance"]
+__all__ = ["propagate", "pull_shape", "resample", "translation_std", "translation_distance"]
 
 
 def propagate(
@@ -173,44 +173,6 @@ def translation_distance(params, predicted, std) -> np.ndarray:
     """
     p = np.atleast_2d(np.asarray(params, dtype=np.float64))
     diff = p[:, 4:] - np.asarray(predicted, dtype=np.float64)
-    return _squared_z(diff, std)
-
-
-def scale_distance(params, parents, std, aspect_std: float | None = None) -> np.ndarray:
-    """Squared length of each state's step in scale from its parent, in
-    standard deviations of the random walk (:func:`propagate`).
-
-    With ``aspect_std`` None the diagonal terms move independently in log
-    space: ``d = (log(a11 / p11) / std[0])^2 + (log(a22 / p22) / std[3])^2``.
-    With a float, the walk's two draws are recovered from the log steps
-    ``l11, l22``: the scale ``(l11 + l22) / (2 std[0])`` and the aspect
-    ``(l22 - l11) / aspect_std``.
-
-    Parameters
-    ----------
-    params : (n, 6) affine states with ``a11, a22 > 0``.
-    parents : (6,) or (n, 6) the states they were drawn from (one for all,
-        or one each).
-    std : (6,) the random walk's relative standard deviations.
-    aspect_std : as for :func:`propagate`.
-
-    Returns
-    -------
-    (n,) float64 >= 0; ``exp(-d / 2)`` is the random walk's Gaussian density
-    of the scale step, up to a constant (a zero std: 0 on no step, inf else).
-    """
-    p = np.atleast_2d(np.asarray(params, dtype=np.float64))
-    q = np.atleast_2d(np.asarray(parents, dtype=np.float64))
-    s = np.asarray(std, dtype=np.float64)
-    l11, l22 = np.log(p[:, 0] / q[:, 0]), np.log(p[:, 3] / q[:, 3])
-    if aspect_std is None:
-        return _squared_z(np.c_[l11, l22], (s[0], s[3]))
-    return _squared_z(np.c_[0.5 * (l11 + l22), l22 - l11], (s[0], float(aspect_std)))
-
-
-def _squared_z(diff: np.ndarray, std) -> np.ndarray:
-    """``sum_j (diff_ij / std_ij)^2`` per row; along a zero std, 0 where the
-    difference is 0 and inf elsewhere."""
     std = np.broadcast_to(np.asarray(std, dtype=np.float64), diff.shape)
     with np.errstate(divide="ignore", invalid="ignore"):
         z = np.where(std > 0, diff / np.where(std > 0, std, 1.0), np.where(diff == 0, 0.0, np.inf))

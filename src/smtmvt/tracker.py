@@ -42,7 +42,7 @@ from .features import Patches, extract_views, intensity_template_size
 from .foreground import RING, box_contrast, foreground_map, foreground_model, ring_window
 from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine, box_with_aspect
 from .likelihood import Observation, observe
-from .motion import propagate, pull_shape, resample, scale_distance, translation_distance, translation_std
+from .motion import propagate, pull_shape, resample, translation_distance, translation_std
 from .preprocess import (
     PreparedFrame,
     plane_window,
@@ -583,7 +583,6 @@ class Tracker:
             # random walk's translation std there, for the motion term
             predicted = particles[:, 4:] + (0.0 if shift is None else shift)
             self._steps = (predicted, translation_std(particles, std, cfg.translation_power))
-            self._parents = particles  # for the scale part of the motion term
             return moved
 
     def _prepare_candidates(self, frame, particles, probe_states, plane_scale: float):
@@ -656,12 +655,6 @@ class Tracker:
             if len(probe_states):
                 d2 = np.concatenate([d2, self._probe_distance(probe_states)])
             motion = cfg.motion_weight * 0.5 * d2 / cfg.alpha
-            offset = motion if offset is None else offset + motion
-        if cfg.scale_weight:
-            d2 = scale_distance(particles, self._parents, cfg.affine_std, cfg.aspect_std)
-            if len(probe_states):
-                d2 = np.concatenate([d2, scale_distance(probe_states, self._state, cfg.affine_std, cfg.aspect_std)])
-            motion = cfg.scale_weight * 0.5 * d2 / cfg.alpha
             offset = motion if offset is None else offset + motion
         if cfg.foreground_weight:
             contrast = self._contrast(prepared, particles, plane_scale)
