@@ -240,3 +240,36 @@ def test_when_every_template_is_fixed_none_is_replaced():
     assert d.angle > 30 and d.replaced is None
     for Dk, D0k in zip(ts.dictionaries, D0):
         np.testing.assert_array_equal(Dk, D0k)
+
+
+@pytest.mark.parametrize("margin", [4.0, 200.0])
+def test_update_margin_sets_the_trigger_from_the_first_frames_angles(monkeypatch, margin):
+    """With ``update_margin`` the rule is given ``update_angle`` on the first 10
+    frames, then the median of their angles plus the margin, or
+    ``update_angle`` where that is lower."""
+    from smtmvt import Tracker, TrackerConfig
+    from smtmvt.demo import make_demo_sequence
+
+    calls = []  # (trigger given, angle measured) per frame
+    update = TemplateSet.update
+
+    def spy(self, *args, **kwargs):
+        decision = update(self, *args, **kwargs)
+        calls.append((kwargs["update_angle"], decision.angle))
+        return decision
+
+    monkeypatch.setattr(TemplateSet, "update", spy)
+    demo = make_demo_sequence(n_frames=14)
+    cfg = TrackerConfig(n_particles=60, seed=0, update_margin=margin)
+    assert TrackerConfig().update_margin is None and TrackerConfig.paper().update_margin is None
+    t = Tracker(cfg)
+    t.init(demo.frames[0], demo.groundtruth[0])
+    for frame in demo.frames[1:]:
+        t.update(frame)
+    triggers, angles = np.array(calls).T
+    np.testing.assert_array_equal(triggers[:10], cfg.update_angle)
+    expected = min(cfg.update_angle, float(np.median(angles[:10])) + margin)
+    assert expected < cfg.update_angle if margin == 4.0 else expected == cfg.update_angle
+    np.testing.assert_array_equal(triggers[10:], expected)
+    with pytest.raises(ValueError, match="update_margin"):
+        TrackerConfig(update_margin=-1.0)

@@ -1,5 +1,6 @@
 """The Tracker object end to end: API, determinism, bad input, real tracking."""
 
+import cv2
 import numpy as np
 import pytest
 
@@ -416,3 +417,50 @@ def test_stage_timings_are_disjoint(demo):
     wall = time.perf_counter() - t0
     assert {"warp", "features", "solve", "likelihood"} <= set(t.timings)
     assert sum(t.timings.values()) <= wall
+
+
+def _first_intensity_template(frame, box, plane):
+    t = Tracker(TrackerConfig(n_particles=10, n_templates=1, seed=0, intensity_plane=plane))
+    t.init(frame, box)
+    return t._templates.dictionaries[t._intensity_index][:, 0]
+
+
+def test_intensity_planes_keep_what_each_is_invariant_to():
+    """``intensity_plane``: "gray" samples the gray frame (its zero-mean,
+    unit-norm template ignores a brightness offset and a gain); "dog" is a
+    difference of Gaussians of the frame's gamma ``gray ** 0.2`` (a gain
+    multiplies it by ``gain ** 0.2``, so the template stays; an offset does
+    not); the three planes give three different templates."""
+    rng = np.random.default_rng(0)
+    fine, coarse = (cv2.GaussianBlur(rng.random((120, 160)).astype(np.float32), (0, 0), s) for s in (1.0, 6.0))
+    frame = fine / fine.std() + coarse / coarse.std()  # texture at the frame's and the template's scales
+    frame = 0.02 + 0.48 * (frame - frame.min()) / np.ptp(frame)  # in [0.02, 0.5]
+    box = (50.0, 40.0, 40.0, 30.0)
+    t = {p: _first_intensity_template(frame, box, p) for p in ("tan_triggs", "gray", "dog")}
+    for a, b in (("tan_triggs", "gray"), ("tan_triggs", "dog"), ("gray", "dog")):
+        assert float(t[a] @ t[b]) < 0.95, (a, b)
+    np.testing.assert_allclose(_first_intensity_template(0.5 * frame + 0.15, box, "gray"), t["gray"], atol=1e-4)
+    np.testing.assert_allclose(_first_intensity_template(0.5 * frame, box, "dog"), t["dog"], atol=1e-4)
+    assert float(_first_intensity_template(frame + 0.5, box, "dog") @ t["dog"]) < 0.999
+    with pytest.raises(ValueError, match="intensity_plane"):
+        TrackerConfig(intensity_plane="rgb")
+
+
+def test_dog_intensity_plane_against_scipy():
+    """The "dog" plane is ``G(s) - G(2 s)`` of ``gray ** 0.2`` (scipy's Gaussian
+    filter as the reference, away from the borders, where the two differ)."""
+    from scipy.ndimage import gaussian_filter
+
+    from smtmvt.preprocess import prepare_frame
+
+    rng = np.random.default_rng(1)
+    frame = cv2.GaussianBlur(rng.random((90, 110)).astype(np.float32), (0, 0), 1.0)
+    frame = 0.05 + 0.9 * (frame - frame.min()) / np.ptp(frame)
+    prepared = prepare_frame(frame, "test frame", 1)
+    t = Tracker(TrackerConfig(intensity_plane="dog"))
+    sigma = 2.5
+    plane = t._intensity_plane(prepared, sigma, None)
+    g = prepared.gray.astype(np.float64) ** 0.2
+    ref = gaussian_filter(g, sigma, truncate=4.0) - gaussian_filter(g, 2 * sigma, truncate=4.0)
+    inner = (slice(25, -25), slice(25, -25))
+    np.testing.assert_allclose(plane[inner], ref[inner], atol=2e-4 * np.abs(ref[inner]).max())

@@ -61,6 +61,12 @@ from .warp import inside_fraction, remap_patches, sampling_grid
 
 __all__ = ["Tracker", "TrackResult", "FrameDetail", "track_frames"]
 
+#: Gamma of the "dog" intensity plane (Tan-Triggs' own, ``tan_triggs``'s default).
+DOG_GAMMA = 0.2
+
+#: Frames whose update angles set the trigger of ``config.update_margin``.
+UPDATE_FLOOR_FRAMES = 10
+
 
 @dataclass(frozen=True)
 class TrackResult:
@@ -248,7 +254,7 @@ class Tracker:
             win = sample_window((x0 - ox, y0 - oy, x1 - ox, y1 - oy), frame.shape)
             sig_i, sig_f, sig_c = self._smoothing(plane_scale)
             X, Y = grid(fs)
-            intensity = remap_patches(smooth(frame.normalized, sig_i, win), *grid(self._intensity_size))
+            intensity = remap_patches(self._intensity_plane(frame, sig_i, win), *grid(self._intensity_size))
             gray = remap_patches(smooth(frame.normalized, sig_f, win), X, Y) if self._needs_gray else None
             raw: np.ndarray | None
             # sampled together on a crop only: on a whole plane the whole-plane merge and
@@ -261,6 +267,20 @@ class Tracker:
                 raw = remap_patches(smooth(frame.gray, sig_f, win), X, Y) if self._needs_raw else None
             patches = Patches(intensity=intensity, gray=gray, color=color, raw=raw)
         return patches
+
+    def _intensity_plane(self, frame: PreparedFrame, sigma: float, win) -> np.ndarray:
+        """The plane the intensity patches are sampled from, smoothed by ``sigma``
+        (``config.intensity_plane``; only ``win`` is computed): Tan-Triggs'
+        output, the gray plane, or (``"dog"``) the gray plane after Tan-Triggs'
+        gamma and a difference of Gaussians of ``sigma`` and ``2 sigma``: its
+        band-pass at the template's resolution instead of the frame's."""
+        kind = self.config.intensity_plane
+        if kind == "tan_triggs":
+            return smooth(frame.normalized, sigma, win)
+        if kind == "gray":
+            return smooth(frame.gray, sigma, win)
+        g = np.power(np.maximum(frame.gray, 1e-4), np.float32(DOG_GAMMA))
+        return smooth(g, sigma, win) - smooth(g, 2.0 * sigma, win)
 
     @staticmethod
     def _color_and_raw(frame: PreparedFrame, sigma: float, win, X, Y) -> tuple[np.ndarray, np.ndarray]:
@@ -468,6 +488,7 @@ class Tracker:
         self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
         self._background = self._background_views(prepared)
         self._intensity_index = cfg.views.index("intensity") if "intensity" in cfg.views else None
+        self._first_angles: list[float] = []  # the update rule's angles on the first frames (update_margin)
         self._initialized = True
 
     # -- the working frame (config.frame_size) ------------------------------
@@ -486,7 +507,8 @@ class Tracker:
         refresh = bool(cfg.crop_refresh) and self._frame_index % cfg.crop_refresh == 0
         if states is not None and self._crop and not refresh:
             plane_shape = (shape[0], shape[1]) if size is None else (size[1], size[0])
-            reach = smooth_reach(max(self._smoothing(plane_scale))) + 1
+            sigmas = self._smoothing(plane_scale)
+            reach = smooth_reach(max(*sigmas, 2.0 * sigmas[0] if cfg.intensity_plane == "dog" else 0.0)) + 1
             if cfg.foreground_weight:  # the foreground term reads the rings around the boxes
                 states = np.array(states, dtype=np.float64)
                 states[:, :4] *= RING
@@ -694,12 +716,14 @@ class Tracker:
                 views,
                 obs.C[:, :, best],
                 [Ek[:, best] for Ek in obs.E],
-                update_angle=cfg.update_angle,
+                update_angle=self._update_angle(),
                 occlusion_fraction=cfg.occlusion_fraction,
                 intensity_view=self._intensity_index,
                 anchor_cos=cfg.anchor_cos,
                 fixed=cfg.fixed_templates,
             )
+        if len(self._first_angles) < UPDATE_FLOOR_FRAMES:
+            self._first_angles.append(decision.angle)
         if decision.replaced is not None:
             self._bases = None  # a dictionary column changed: its range bases are recomputed
         state = (p / p.sum()) @ particles if cfg.estimate == "mean" else particles[best].copy()
@@ -720,6 +744,16 @@ class Tracker:
         )
         best_views = [v.copy() for v in views]
         return result, FrameDetail(particles, obs, best, probe_boxes, self._scale, best_views, self._reshape())
+
+    def _update_angle(self) -> float:
+        """The template update's trigger this frame, degrees: ``config.update_angle``,
+        or with ``config.update_margin`` and once the first
+        ``UPDATE_FLOOR_FRAMES`` frames are seen, the median of their angles plus
+        the margin where that is lower."""
+        margin = self.config.update_margin
+        if margin is None or len(self._first_angles) < UPDATE_FLOOR_FRAMES:
+            return self.config.update_angle
+        return min(self.config.update_angle, float(np.median(self._first_angles)) + margin)
 
     def _reshape(self) -> tuple[float, float]:
         """``(aspect, fraction)`` of the reported boxes: the first box's aspect
