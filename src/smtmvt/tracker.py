@@ -39,6 +39,7 @@ from .anchor import anchor_offsets
 from .background import background_offsets, ring_states
 from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
+from .features.tan_triggs import TAN_TRIGGS_GAMMA
 from .foreground import RING, box_contrast, foreground_map, foreground_model, ring_window
 from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine, box_with_aspect
 from .likelihood import Observation, observe
@@ -61,8 +62,8 @@ from .warp import inside_fraction, remap_patches, sampling_grid
 
 __all__ = ["Tracker", "TrackResult", "FrameDetail", "track_frames"]
 
-#: Gamma of the "dog" intensity plane (Tan-Triggs' own, ``tan_triggs``'s default).
-DOG_GAMMA = 0.2
+#: The "dog" intensity plane's outer Gaussian, in multiples of the inner one (Tan-Triggs' 2 / 1).
+DOG_RATIO = 2.0
 
 #: Frames whose update angles set the trigger of ``config.update_margin``.
 UPDATE_FLOOR_FRAMES = 10
@@ -272,15 +273,17 @@ class Tracker:
         """The plane the intensity patches are sampled from, smoothed by ``sigma``
         (``config.intensity_plane``; only ``win`` is computed): Tan-Triggs'
         output, the gray plane, or (``"dog"``) the gray plane after Tan-Triggs'
-        gamma and a difference of Gaussians of ``sigma`` and ``2 sigma``: its
-        band-pass at the template's resolution instead of the frame's."""
+        gamma and a difference of Gaussians of ``sigma`` and ``DOG_RATIO sigma``:
+        its band-pass at the template's resolution instead of the frame's (the
+        gray plane is floored at 1e-4 before the gamma, unlike Tan-Triggs', so a
+        black pixel becomes 0.16, not 0; measured so in config note [28])."""
         kind = self.config.intensity_plane
         if kind == "tan_triggs":
             return smooth(frame.normalized, sigma, win)
         if kind == "gray":
             return smooth(frame.gray, sigma, win)
-        g = np.power(np.maximum(frame.gray, 1e-4), np.float32(DOG_GAMMA))
-        return smooth(g, sigma, win) - smooth(g, 2.0 * sigma, win)
+        g = np.power(np.maximum(frame.gray, 1e-4), np.float32(TAN_TRIGGS_GAMMA))
+        return smooth(g, sigma, win) - smooth(g, DOG_RATIO * sigma, win)
 
     @staticmethod
     def _color_and_raw(frame: PreparedFrame, sigma: float, win, X, Y) -> tuple[np.ndarray, np.ndarray]:
@@ -508,7 +511,7 @@ class Tracker:
         if states is not None and self._crop and not refresh:
             plane_shape = (shape[0], shape[1]) if size is None else (size[1], size[0])
             sigmas = self._smoothing(plane_scale)
-            reach = smooth_reach(max(*sigmas, 2.0 * sigmas[0] if cfg.intensity_plane == "dog" else 0.0)) + 1
+            reach = smooth_reach(max(*sigmas, DOG_RATIO * sigmas[0] if cfg.intensity_plane == "dog" else 0.0)) + 1
             if cfg.foreground_weight:  # the foreground term reads the rings around the boxes
                 states = np.array(states, dtype=np.float64)
                 states[:, :4] *= RING

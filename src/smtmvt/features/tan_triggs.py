@@ -53,6 +53,9 @@ def _gaussian_radius(sigma: float) -> int:
 #: Pixels the default chain (outer sigma 2) reads on each side of a pixel.
 TAN_TRIGGS_REACH = _gaussian_radius(2.0)
 
+#: Tan-Triggs' gamma correction exponent (their paper's 0.2; :func:`tan_triggs`'s default).
+TAN_TRIGGS_GAMMA = 0.2
+
 
 def to_unit_float(image: np.ndarray) -> np.ndarray:
     """Scale a gray image to float64 in [0, inf) by its dtype.
@@ -146,7 +149,7 @@ def _equalize(image: np.ndarray, alpha: float, tau: float | None, region=None, s
 
 def tan_triggs(
     image: np.ndarray,
-    gamma: float = 0.2,
+    gamma: float = TAN_TRIGGS_GAMMA,
     sigma0: float = 1.0,
     sigma1: float = 2.0,
     alpha: float = 0.1,
