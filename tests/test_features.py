@@ -21,6 +21,7 @@ from smtmvt.features import (
     tan_triggs,
 )
 from smtmvt.features import views as views_module
+from smtmvt.features.coarse import COARSE_SIGMA, coarse_view
 from smtmvt.features.color import color_histograms, color_view
 from smtmvt.features.hog import hog_descriptors, hog_dim, hog_view, orientation_bins
 from smtmvt.features.lbp import lbp_codes, lbp_histograms, lbp_view
@@ -376,6 +377,50 @@ def test_color_values_outside_unit_range_are_clipped():
     assert hist[0, 15] == 1.0 and hist[1, 0] == 1.0
 
 
+# --------------------------------------------------------------------------- coarse
+
+
+def _coarse_reference(raw):
+    """The coarse view written out with scipy: gamma, minus the 2-D Gaussian
+    blur (mode nearest), 2x2 block means (odd last row/column dropped)."""
+    g = np.power(np.maximum(raw.astype(np.float64), 1e-4), 0.2)
+    out = []
+    for p in g:
+        d = p - ndi.gaussian_filter(p, COARSE_SIGMA, mode="nearest")
+        h, w = (d.shape[0] // 2) * 2, (d.shape[1] // 2) * 2
+        out.append(d[:h, :w].reshape(h // 2, 2, w // 2, 2).mean(axis=(1, 3)).ravel())
+    return np.stack(out)
+
+
+@pytest.mark.parametrize("shape", [(7, 32, 32), (3, 31, 18)])
+def test_coarse_view_matches_scipy(shape):
+    raw = np.random.default_rng(31).random(shape).astype(np.float32)
+    raw[0, :3, :3] = 0.0  # the floor before the gamma
+    ours = coarse_view(Patches(None, None, None, raw))
+    assert ours.shape == (shape[0], (shape[1] // 2) * (shape[2] // 2)) and ours.dtype == np.float32
+    assert_allclose(ours, _coarse_reference(raw), atol=2e-6)
+
+
+def test_coarse_view_band_pass():
+    # a constant patch has no band-pass content; a coarse blob does, and the
+    # normalized view is the same for any gain of the gray patch (the gamma turns
+    # a gain into a gain)
+    flat = coarse_view(Patches(None, None, None, np.full((1, 32, 32), 0.4, np.float32)))
+    assert np.abs(flat).max() < 1e-6
+    yy, xx = np.mgrid[:32, :32]
+    blob = (0.2 + 0.6 * np.exp(-((yy - 12.0) ** 2 + (xx - 20.0) ** 2) / 18.0)).astype(np.float32)
+    a, b = (extract_views(Patches(None, None, None, (k * blob)[None]), ("coarse",))[0][:, 0] for k in (1.0, 0.5))
+    assert np.abs(a).max() > 0.1
+    assert_allclose(a, b, atol=1e-5)
+    # the blob's centre block (row 6, column 10 of 16) is where the view peaks
+    assert np.argmax(a) == 6 * 16 + 10
+
+
+def test_coarse_view_needs_raw():
+    with pytest.raises(ValueError, match="Patches.raw"):
+        coarse_view(_make_patches(2, np.random.default_rng(1)))
+
+
 # --------------------------------------------------------------------------- extract_views
 
 
@@ -459,7 +504,7 @@ def test_register_view(monkeypatch):
 
 
 def test_registry_unchanged_by_register_view_test():
-    assert available_views() == ("intensity", "color", "hog", "lbp")
+    assert available_views() == ("intensity", "color", "hog", "lbp", "coarse")
 
 
 # --------------------------------------------------------------------------- Patches

@@ -448,7 +448,7 @@ class Tracker:
         }
         # the feature-size gray planes the views read (only those are warped; a
         # registered view of another name may read either)
-        read = {"hog": {cfg.hog_plane}, "lbp": {cfg.lbp_plane}, "intensity": set(), "color": set()}
+        read = {"hog": {cfg.hog_plane}, "lbp": {cfg.lbp_plane}, "coarse": {"gray"}, "intensity": set(), "color": set()}
         planes = set().union(*(read.get(view, {"gray", "tan_triggs"}) for view in cfg.views))
         self._needs_raw, self._needs_gray = "gray" in planes, "tan_triggs" in planes
         # the Patches arrays each built-in view reads (a deferred view gets only those)

@@ -1,4 +1,4 @@
-"""Feature extraction for SMTMVT: Tan-Triggs normalization and the four views.
+"""Feature extraction for SMTMVT: Tan-Triggs normalization, the paper's four views and a coarse one.
 
 Per frame the tracker normalizes the gray frame once with :func:`tan_triggs`,
 warps every candidate into a :class:`Patches` object and calls
@@ -17,6 +17,9 @@ Views (``available_views()`` order) and their dimensions at the defaults
   (equal to ``skimage.feature.hog``);
 * ``lbp`` -- uniform LBP (P = 8, R = 1, as ``skimage.feature.local_binary_pattern``)
   histograms over a 4x4 grid of cells, 160.
+* ``coarse`` -- the gray patch after Tan-Triggs' gamma, less its blur, in
+  2x2 blocks (:mod:`smtmvt.features.coarse`), 256; not one of the paper's
+  views (``DEFAULT_VIEWS`` are the paper's four).
 """
 
 from .intensity import intensity_template_size

@@ -8,7 +8,7 @@ used as the SMTMVT observation matrices ``X^k`` or, built from template
 patches, as the dictionaries ``D^k``.
 
 The registry is the module-level dict ``VIEW_REGISTRY`` (name -> function),
-filled with the four default views at import and extended only through
+filled with the paper's four views and the coarse view at import and extended only through
 :func:`register_view`; it is the only mutable module state in
 :mod:`smtmvt.features`.
 """
@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from .coarse import coarse_view
 from .color import color_view
 from .hog import hog_view
 from .intensity import intensity_view
@@ -79,7 +80,8 @@ class Patches:
         ``TrackerConfig.color_size`` says otherwise); input of the color view.
     raw : (n, fh, fw) float32 or None
         The gray frame *before* Tan-Triggs, at the feature size; input of the
-        HOG and LBP views when they are asked for ``plane="gray"``.
+        HOG and LBP views when they are asked for ``plane="gray"``, and of the
+        coarse view.
 
     An array no view reads may be None (a view that reads it says so); at
     least one is given. Arrays are converted to float32 (no copy when they
@@ -171,6 +173,7 @@ VIEW_REGISTRY: dict[str, ViewFn] = {
     "color": color_view,
     "hog": hog_view,
     "lbp": lbp_view,
+    "coarse": coarse_view,
 }
 
 
@@ -282,7 +285,7 @@ def extract_views(
     list of (d_k, n) float32 ndarrays, C-contiguous, in the order of ``names``;
     column ``i`` is the normalized (:func:`normalize_columns`) feature vector of
     patch ``i``. Defaults at a 32x32 feature size: intensity ``th * tw``,
-    color 48 (RGB) or 16 (gray), hog 324, lbp 160.
+    color 48 (RGB) or 16 (gray), hog 324, lbp 160, coarse 256.
     """
     if not isinstance(patches, Patches):
         raise TypeError(f"expected a Patches object, got {type(patches).__name__}")
