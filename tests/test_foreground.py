@@ -85,7 +85,9 @@ def test_the_true_box_has_the_highest_contrast():
 
 def test_foreground_term_moves_the_boxes_only_when_on():
     demo = make_demo_sequence(n_frames=30)
-    cfg = TrackerConfig(n_particles=100, seed=0)
+    # seed 1: with seed 0 the demo's first 30 frames choose the same particles with
+    # the term or without (its contrast there spans only -0.12 to 0.03)
+    cfg = TrackerConfig(n_particles=100, seed=1)
 
     def track(c):
         t = Tracker(c)

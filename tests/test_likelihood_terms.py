@@ -172,13 +172,14 @@ def test_anchor_term_moves_the_boxes_only_when_on(demo):
 
 def test_background_term_views_are_never_deferred(demo):
     """The background term needs its views for every candidate: with it on, HOG (one
-    of them) is computed for all, LBP alone deferred."""
+    of them) is computed for all, and so the coarse view before it; LBP alone deferred."""
     frames, gt = demo
-    t = Tracker(TrackerConfig(deferred_views=("hog", "lbp"), background_weight=0.5, n_particles=60, seed=1))
+    t = Tracker(TrackerConfig(background_weight=0.5, n_particles=60, seed=1))
     t.init(frames[0], gt[0])
-    assert TrackerConfig().deferred_views == ("hog", "lbp") and t._n_first == 3
+    assert TrackerConfig().deferred_views == ("coarse", "hog", "lbp") and t._n_first == 4
+    assert TrackerConfig().views[2:4] == ("coarse", "hog")
     _, detail = t.update_detailed(frames[1])
-    assert (detail.observation.views[2] != 0).any(axis=0).all()  # HOG for every candidate
+    assert (detail.observation.views[3] != 0).any(axis=0).all()  # HOG for every candidate
     for cfg in (
         TrackerConfig(deferred_views=("hog", "lbp"), term_views=("intensity", "color"), background_weight=0.5),
         TrackerConfig(deferred_views=("hog", "lbp"), n_particles=60, seed=1),  # the anchor term's part deferred
@@ -195,12 +196,12 @@ def test_term_views_are_weighted_like_the_coding(demo):
     candidates' views are for the coding (the same ring: same seed, same frame)."""
     frames, gt = demo
     cfg = TrackerConfig(n_particles=60, seed=2, background_weight=0.5, background_samples=6)
-    plain, weighted = Tracker(cfg), Tracker(cfg.replace(view_weights=(4.0, 1.0, 9.0, 1.0)))
+    plain, weighted = Tracker(cfg), Tracker(cfg.replace(view_weights=(4.0, 1.0, 1.0, 9.0, 1.0)))
     for t in (plain, weighted):
         t.init(frames[0], gt[0])
     assert len(weighted._background) == 3  # intensity, color, HOG
     for k, scale in enumerate((2.0, 1.0, 3.0)):
         np.testing.assert_allclose(weighted._background[k], scale * plain._background[k], rtol=1e-6)
     x = [np.ones((Dk.shape[0], 2), np.float32) for Dk in plain._templates.dictionaries]
-    np.testing.assert_allclose(weighted._terms_of(x)[2], 3.0 * x[2])
+    np.testing.assert_allclose(weighted._terms_of(x)[2], 3.0 * x[3])  # HOG, the views' fourth
     assert weighted.update(frames[1]).score > 0
