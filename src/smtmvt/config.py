@@ -72,6 +72,9 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
                     with "dog", update_margin 20      seeds 0-5: 0.631 against 0.636 [28]
                     with intensity_plane "gray"       stopped: Car4 0.80 -> 0.06 [28]
                     with the coarse view (*)          0.645 over 12 seeds against 0.623 [29]
+                      with its view weight 0.5        seeds 0-5: 0.642 against 0.653 [29]
+                      with its view weight 2          seeds 0-5: 0.628 against 0.653 [29]
+                      with it a term view too         seeds 0-5: 0.646 against 0.653 [29]
                 with antialias 1.5                    0.623 over 9 seeds against 0.621 [24]
                 with antialias 2                      seeds 0-2: 0.588 against 0.622 [24]
                 with the intensity's antialias 1.5    0.624 over 9 seeds against 0.621 [24]
@@ -658,6 +661,18 @@ computed the view for every candidate with scipy's 2-D filter (tag
 0.657; 32 against 42 fps in the sweep); deferred, it is computed for a median 226 of the 400
 candidates on Crossing (HOG for 35, LBP for 16; 16 coded), and the boxes are
 byte-identical to computing it for all (Crossing, seed 0, 120 frames).
+Its cost: ``bench/bench_tracker.py`` on Crossing, alternating with stop 24's
+code, 0.89-0.99 of its fps (median about 0.92: the features +0.6 ms a frame,
+the solver's fifth view +0.9 ms, the bounds +0.4 ms). Measured with it, not
+kept (seeds 0-5, against its 0.653 there): its view weight 0.5 (``view_weights``
+1, 1, 0.5, 1, 1; tag ``c5w``) 0.642 (per seed 0.667 / 0.644 / 0.660 / 0.629 /
+0.625 / 0.625; Subway 0.57 -> 0.66, Basketball 0.56 -> 0.62, Bolt +0.06;
+Car4 0.80 -> 0.69, CarDark 0.75 -> 0.61, David 0.72 -> 0.64); weight 2
+(``c5w2``) 0.628 (0.656 / 0.640 / 0.631 / 0.591 / 0.645 / 0.603); the coarse
+view in ``term_views`` too, so that the anchor term compares it with the
+first template (``c5t``) 0.646 (0.609 / 0.630 / 0.655 / 0.672 / 0.655 /
+0.653): Walking2 0.49 -> 0.71, Subway 0.57 -> 0.65, but Basketball 0.56 ->
+0.38, Singer2 0.65 -> 0.52.
 """
 
 from __future__ import annotations
