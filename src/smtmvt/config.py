@@ -75,6 +75,7 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
                       with its view weight 0.5        seeds 0-5: 0.642 against 0.653 [29]
                       with its view weight 2          seeds 0-5: 0.628 against 0.653 [29]
                       with it a term view too         seeds 0-5: 0.646 against 0.653 [29]
+                      with update_margin 20           seeds 0-5: 0.652 against 0.653 [29]
                 with antialias 1.5                    0.623 over 9 seeds against 0.621 [24]
                 with antialias 2                      seeds 0-2: 0.588 against 0.622 [24]
                 with the intensity's antialias 1.5    0.624 over 9 seeds against 0.621 [24]
@@ -672,7 +673,10 @@ Car4 0.80 -> 0.69, CarDark 0.75 -> 0.61, David 0.72 -> 0.64); weight 2
 view in ``term_views`` too, so that the anchor term compares it with the
 first template (``c5t``) 0.646 (0.609 / 0.630 / 0.655 / 0.672 / 0.655 /
 0.653): Walking2 0.49 -> 0.71, Subway 0.57 -> 0.65, but Basketball 0.56 ->
-0.38, Singer2 0.65 -> 0.52.
+0.38, Singer2 0.65 -> 0.52. ``update_margin`` 20 with it (``c5um20``):
+0.652 (0.648 / 0.644 / 0.655 / 0.678 / 0.612 / 0.675): as in note [28],
+Walking2 0.49 -> 0.71 and CarDark 0.75 -> 0.82 paid for by Football 0.69 ->
+0.60, Soccer 0.44 -> 0.35, Dog1 and FaceOcc1 -0.04.
 """
 
 from __future__ import annotations
