@@ -39,6 +39,7 @@ from .anchor import anchor_offsets
 from .background import background_offsets, ring_states
 from .config import TrackerConfig
 from .features import Patches, extract_views, intensity_template_size
+from .features.coarse import GAMMA_FLOOR
 from .features.tan_triggs import TAN_TRIGGS_GAMMA
 from .foreground import RING, box_contrast, foreground_map, foreground_model, ring_window
 from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine, box_with_aspect
@@ -275,14 +276,15 @@ class Tracker:
         output, the gray plane, or (``"dog"``) the gray plane after Tan-Triggs'
         gamma and a difference of Gaussians of ``sigma`` and ``DOG_RATIO sigma``:
         its band-pass at the template's resolution instead of the frame's (the
-        gray plane is floored at 1e-4 before the gamma, unlike Tan-Triggs', so a
-        black pixel becomes 0.16, not 0; measured so in config note [28])."""
+        gray plane is floored at ``GAMMA_FLOOR``, 1e-4 as for the coarse view,
+        before the gamma, unlike Tan-Triggs', so a black pixel becomes 0.16,
+        not 0; measured so in config note [28])."""
         kind = self.config.intensity_plane
         if kind == "tan_triggs":
             return smooth(frame.normalized, sigma, win)
         if kind == "gray":
             return smooth(frame.gray, sigma, win)
-        g = np.power(np.maximum(frame.gray, 1e-4), np.float32(TAN_TRIGGS_GAMMA))
+        g = np.power(np.maximum(frame.gray, GAMMA_FLOOR), np.float32(TAN_TRIGGS_GAMMA))
         return smooth(g, sigma, win) - smooth(g, DOG_RATIO * sigma, win)
 
     @staticmethod
