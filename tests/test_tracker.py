@@ -46,8 +46,9 @@ def test_tracks_demo_sequence(demo):
     11: 0.72 and 5). A tracker whose template update never replaces a template
     fails the second assertion. With the defaults, all of seeds 0-23 keep the
     target through the occlusion (``bench/demo_seeds.py --seeds 24``: mean
-    0.795, lowest 0.750; without the coarse view 0.778, seed 2 lost). Stop 16's default, over seeds 0-7: 0.811, 0.747,
-    0.808, 0.792, 0.799, 0.791, 0.775, 0.789: every seed keeps the target
+    0.795, lowest 0.750; without the coarse view 0.778, seed 2 lost). Stop
+    16's default, over seeds 0-7: 0.811, 0.747, 0.808, 0.792, 0.799, 0.791,
+    0.775, 0.789: every seed keeps the target
     through the occlusion near frame 78 (without the foreground term half of
     them lose it: 0.785, 0.471, 0.786, 0.495, 0.478, 0.728, 0.471, 0.766).
     """
@@ -131,9 +132,9 @@ def test_reinit_restarts_on_new_target(demo):
 def test_tracks_real_crossing(otb_dir):
     """OTB Crossing (120 frames); the paper reports 0.78 average overlap.
 
-    Measured 0.811 with the defaults (seed 0; 0.807 without the coarse view, 0.785 earlier,
-    0.751 before the foreground term, 0.800 before the anchor term);
-    threshold set 0.04 below the lowest, kept.
+    Measured 0.811 with the defaults (seed 0; 0.807 without the coarse view,
+    0.785 earlier, 0.751 before the foreground term, 0.800 before the anchor
+    term); threshold set 0.04 below the lowest, kept.
     """
     from smtmvt.data import open_sequence
 
