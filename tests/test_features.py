@@ -22,7 +22,7 @@ from smtmvt.features import (
 )
 from smtmvt.features import views as views_module
 from smtmvt.features.coarse import COARSE_SIGMA, coarse_view
-from smtmvt.features.color import color_histograms, color_view
+from smtmvt.features.color import color_histograms, color_view, soft_binning_matrix
 from smtmvt.features.hog import hog_descriptors, hog_dim, hog_view, orientation_bins
 from smtmvt.features.lbp import lbp_codes, lbp_histograms, lbp_view
 from smtmvt.features.tan_triggs import difference_of_gaussians
@@ -368,6 +368,26 @@ def test_color_grid_on_uneven_cells_equals_the_histograms_of_the_slices(shape, g
         axis=1,
     )
     assert_array_equal(color_view(_Colors, grid=grid), ref)
+
+
+@pytest.mark.parametrize("spread", [1.0, 0.2])
+def test_color_histograms_equal_the_level_order_sums_bit_for_bit(spread):
+    """The compiled histograms equal the soft-binning matrix applied to each patch's
+    8-bit level counts, summed in level order in float64 (the kernel's order),
+    on patches that reach every level and on patches that reach few of them."""
+    rng = np.random.default_rng(21)
+    colors = (0.3 + spread * rng.random((6, 12, 10, 3))).astype(np.float32)
+    W = soft_binning_matrix()
+    level = np.floor(np.clip(colors * np.float32(255) + np.float32(0.5), 0.5, 255.5)).astype(int)
+    ref = np.zeros((6, 3, 16))
+    counts = np.stack([[np.bincount(level[i, ..., c].ravel(), minlength=256) for c in range(3)] for i in range(6)])
+    for q in range(256):
+        for b in np.flatnonzero(W[q]):
+            ref[:, :, b] += counts[:, :, q] * W[q, b]
+    expected = (ref / (12 * 10)).astype(np.float32).reshape(6, 48)
+    assert_array_equal(color_histograms(colors), expected)
+    if spread < 1:
+        assert len(np.unique(level)) < 128  # most levels unused
 
 
 def test_color_values_outside_unit_range_are_clipped():
