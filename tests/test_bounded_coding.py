@@ -8,7 +8,7 @@ import pytest
 
 from smtmvt import Tracker, TrackerConfig
 from smtmvt.demo import make_demo_sequence
-from smtmvt.likelihood import observe
+from smtmvt.likelihood import FIRST_PASS, observe
 from smtmvt.solvers import reconstruction_residual, solve_smtmvt
 from smtmvt.solvers.bounds import least_squares_residuals, range_basis
 from smtmvt.solvers.prox import singular_value_threshold
@@ -117,7 +117,7 @@ def test_observe_with_deferred_views_keeps_the_rule():
     lazy = observe(X[:2], D, _code, alpha=30.0, eps=eps, deferred=[deferred])
     computed = np.concatenate(asked)
     assert len(set(computed.tolist())) == len(computed)  # each candidate asked at most once
-    assert 16 <= len(computed) < 60  # the first pass, and not every candidate
+    assert FIRST_PASS <= len(computed) < 60  # the first pass, and not every candidate
     np.testing.assert_array_equal(np.sort(computed), np.flatnonzero(lazy.complete))
     _assert_keeps_the_rule(lazy, full, eps)
     # the views returned: every view where computed, zero columns elsewhere
@@ -294,8 +294,6 @@ def _fast_code(X, D):
 
 def _rule(bound, residual, alpha, eps, valid):
     """The coded set of the module docstring's rule, from the bounds and the first pass's residuals."""
-    from smtmvt.likelihood import FIRST_PASS
-
     order = np.flatnonzero(valid)[np.argsort(bound[valid], kind="stable")]
     first, rest = order[:FIRST_PASS], order[FIRST_PASS:]
     best = residual[first].min()

@@ -32,7 +32,7 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["least_squares_residuals", "nonnegative_residuals", "range_basis"]
+__all__ = ["gram_matrices", "least_squares_residuals", "nonnegative_residuals", "range_basis"]
 
 #: Subtracted from each computed NNLS value: far above its rounding (about 1e-14),
 #: so that the bound stays below the exact NNLS minimum.
@@ -203,19 +203,27 @@ def _nnls_kernel(Gs, Qs, XXs, out, ok):  # pragma: no cover - compiled
     return out
 
 
-def nonnegative_residuals(X, D, bases=None) -> np.ndarray:
+def gram_matrices(D) -> list:
+    """``D^k' D^k`` ``(N, N)`` float64 of each dictionary ``(d_k, N)``: the
+    ``grams`` of :func:`nonnegative_residuals`, for a caller that bounds several
+    batches of candidates against the same dictionaries."""
+    return [Dk.T @ Dk for Dk in (np.asarray(Dk, dtype=np.float64) for Dk in D)]
+
+
+def nonnegative_residuals(X, D, bases=None, grams=None) -> np.ndarray:
     """``sum_k min_{c >= 0} ||D^k c - x_i^k||^2`` for every candidate (minus ``NNLS_MARGIN``), ``(n,)`` float64 >= 0.
 
     A lower bound on the residual of any nonnegative code (see the module
     docstring), at least :func:`least_squares_residuals`; where the active-set
     method cannot certify its result the least-squares bound is used.
     ``bases``: optional :func:`range_basis` of each ``D^k``, as for
-    :func:`least_squares_residuals`.
+    :func:`least_squares_residuals`; ``grams``: optional
+    :func:`gram_matrices` of ``D`` (computed when omitted).
     """
     Xs = [np.asarray(Xk, dtype=np.float64) for Xk in X]
     Ds = [np.asarray(Dk, dtype=np.float64) for Dk in D]
     n = Xs[0].shape[1]
-    G = np.ascontiguousarray(np.stack([Dk.T @ Dk for Dk in Ds]))
+    G = np.ascontiguousarray(np.stack(gram_matrices(Ds) if grams is None else grams))
     Q = np.ascontiguousarray(np.stack([Dk.T @ Xk for Dk, Xk in zip(Ds, Xs)]))
     XX = np.ascontiguousarray(np.stack([np.einsum("ij,ij->j", Xk, Xk) for Xk in Xs]))
     out = np.empty(n)
