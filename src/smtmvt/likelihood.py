@@ -49,11 +49,11 @@ skipped candidates are looser than with every view computed (a few more
 candidates are coded). A term of the offset that is itself a sum of
 nonnegative parts over the views (the anchor term of :mod:`smtmvt.anchor`)
 is deferred the same way: each deferred view brings its part. With the
-tracker's default (HOG, then LBP deferred; 150 frames, seed 0) HOG is
-computed for a median of 119 of the 400 candidates on Crossing, 134 on
-Girl, 180 on FaceOcc1, but for all 400 on Bolt and Soccer, whose
-intensity and color bounds settle nothing; LBP for 16-18 on the first three,
-48-60 on the last two.
+tracker's default (the coarse view, HOG, then LBP deferred; 120 frames, seed
+0, stop 26) the coarse view is computed for a mean of 252 of the 400
+candidates a frame on Crossing, 357 on David, 383 on Basketball; HOG for 70,
+247 and 293; LBP for 12, 22 and 27 (stop 22, HOG then LBP: HOG for all 400
+on Bolt and Soccer, whose intensity and color bounds settle nothing).
 """
 
 from __future__ import annotations
