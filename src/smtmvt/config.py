@@ -82,6 +82,7 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
                       with a ceiling on the update    seeds 0-5: 0.615 against 0.653 [30]
                       with 600 particles              seeds 0-5: 0.635 against 0.653 [30]
                       with 300 particles              seeds 0-5: 0.610 against 0.653 [30]
+                      with anchor_weight 1.5          seeds 0-5: 0.630 against 0.653 [30]
                 with antialias 1.5                    0.623 over 9 seeds against 0.621 [24]
                 with antialias 2                      seeds 0-2: 0.588 against 0.622 [24]
                 with the intensity's antialias 1.5    0.624 over 9 seeds against 0.621 [24]
@@ -716,9 +717,12 @@ failures are the model's (as ``bench/diagnose.py`` classifies them), not the
 search's. 300 particles (``np300``): 0.610 (0.682 / 0.629 / 0.618 / 0.580 /
 0.538 / 0.614; Car4 0.80 -> 0.66, Shaking 0.74 -> 0.62, Soccer 0.44 -> 0.25,
 Singer2 -0.17; Subway +0.09); 53.8 fps a run in the sweep against 35.6 for
-600. Every variant of this note landed below the default's 0.653 on seeds
-0-5, whose own seeds 6-11 give 0.637: a change of the trajectories alone
-moves a 6-seed mean by about 0.02.
+600. ``anchor_weight`` 1.5 (``anc15``): 0.630 (0.618 / 0.623 / 0.674 / 0.645
+/ 0.609 / 0.609; Soccer 0.44 -> 0.25, CarDark 0.75 -> 0.60, Basketball 0.56
+-> 0.48, Walking2 -0.08, Bolt -0.07; Singer2 0.65 -> 0.75, Subway +0.09).
+Every variant of this note landed below the default's 0.653 on seeds 0-5,
+whose own seeds 6-11 give 0.637: a change of the trajectories alone moves a
+6-seed mean by about 0.02.
 """
 
 from __future__ import annotations
