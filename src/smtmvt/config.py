@@ -771,9 +771,9 @@ overlaps 0.74 with it as without (Basketball 0.70 -> 0.78, Singer2 0.78 ->
 -> 0.63, CarDark 0.75 -> 0.62, Soccer 0.44 -> 0.32); 8 templates (``nt8``):
 0.625 (Basketball 0.56 -> 0.67; Singer2 0.65 -> 0.52, Car4 0.80 -> 0.68,
 CarDark 0.75 -> 0.60, Shaking -0.08, Soccer -0.08): the paper's 10 stays,
-both directions lose. The update's angle
-measured on the mean cosine over all views instead of the intensity view
-(an experimental option, not kept in the code; on Freeman1, whose templates
+both directions lose. The update's angle measured on the mean cosine over
+all views instead of the intensity view (an experimental option, not kept
+in the code; on Freeman1, whose templates
 are never replaced under the intensity rule, the coarse and HOG views of
 the chosen box are nearly unexplained, residuals 0.8-1.0 of 1, from frame 45
 on): 0.638 with the trigger at 60 degrees (``uv60``: Walking2 0.49 -> 0.70,
