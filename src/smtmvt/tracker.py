@@ -7,10 +7,11 @@ Data flows one way, one stage per module::
           --warp--------> candidate patches, one batched remap per plane
           --features----> K views, (d_k, n) normalized columns
           --solvers-----> codes C (K, N, n) and outliers E over the templates
-          --likelihood--> p_i = exp(-alpha * (sum_k ||D^k c_i^k - x_i^k||^2 + a_i + f_i + m_i))
+          --likelihood--> p_i = exp(-alpha * (sum_k ||D^k c_i^k - x_i^k||^2 + a_i + f_i + r_i + m_i))
                           (a_i: the anchor term, smtmvt.anchor; f_i: the
-                          foreground term, smtmvt.foreground; m_i: the motion
-                          term, smtmvt.motion.translation_distance)
+                          foreground term, smtmvt.foreground; r_i: the
+                          correlation term, smtmvt.correlation; m_i: the
+                          motion term, smtmvt.motion.translation_distance)
           --state-------> best candidate = result; template update; resampling
 
 Usage (like OpenCV's trackers)::
@@ -38,6 +39,7 @@ from threadpoolctl import ThreadpoolController
 from .anchor import anchor_offsets
 from .background import background_offsets, ring_states
 from .config import TrackerConfig
+from .correlation import CorrelationFilter
 from .features import Patches, extract_views, intensity_template_size
 from .features.coarse import GAMMA_FLOOR
 from .features.tan_triggs import TAN_TRIGGS_GAMMA
@@ -484,6 +486,8 @@ class Tracker:
         self._box = tuple(float(v) for v in b)
         # the foreground term's color model: the first box against its surroundings, on the whole frame
         self._fg_model = foreground_model(prepared.color, wb) if cfg.foreground_weight else None
+        # the correlation term's filter, on the frame as given (not the working frame)
+        self._filter = CorrelationFilter(frame, b) if cfg.correlation_weight else None
         t_states = self._template_states(self._state)
         if self._crop and not cfg.crop_refresh:  # the templates' planes as every later frame's
             prepared = self._prepare(frame, "init frame", self._channels, 1.0, t_states)
@@ -588,8 +592,12 @@ class Tracker:
                 self._rng.bit_generator.state = rng_state
                 self._frame_index -= 1
                 raise
-        obs, views_of = self._observe(prepared, probe_planes, particles, probe_states, plane_scale)
-        return self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale)
+        obs, views_of = self._observe(frame, prepared, probe_planes, particles, probe_states, plane_scale)
+        result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale)
+        if self._filter is not None and detail.best is not None:
+            with self._timed("likelihood"):
+                self._filter.update(frame, self._from_work(self._work_box))
+        return result, detail
 
     def _propagate(self) -> np.ndarray:
         """This frame's ``(n, 6)`` particles: the last frame's resampled by their
@@ -623,7 +631,7 @@ class Tracker:
             probe_planes = self._prepare(frame, where, self._channels, plane_scale, probe_states)
         return prepared, probe_planes
 
-    def _observe(self, prepared, probe_planes, particles, probe_states, plane_scale: float):
+    def _observe(self, frame, prepared, probe_planes, particles, probe_states, plane_scale: float):
         """Views, codes and likelihoods of the particles followed by the probes:
         ``(Observation, views_of)``, ``views_of(i)`` the K views ``(d_k,)``
         float32 of candidate i (a deferred view zero where it was not computed)."""
@@ -640,6 +648,9 @@ class Tracker:
         X = self._extract(patches, now)
         with self._timed("likelihood"):
             offset = self._offsets(X, prepared, probe_planes, particles, probe_states, plane_scale)
+            if self._filter is not None:
+                corr = self._correlation(frame, np.concatenate([particles, probe_states]))
+                offset = corr if offset is None else offset + corr
         # A candidate mostly outside the image is not a valid observation.
         with self._timed("motion"):
             valid = inside_fraction(states, work_shape) >= 0.5
@@ -690,6 +701,20 @@ class Tracker:
             fg = cfg.foreground_weight * (1.0 - contrast)
             offset = fg if offset is None else offset + fg
         return offset
+
+    def _correlation(self, frame, states: np.ndarray) -> np.ndarray:
+        """The correlation term of each state ``(n, 6)`` (working frame):
+        ``weight * (1 - r_i / r_max)`` (:mod:`smtmvt.correlation`), the filter's
+        window about the last box moved by the velocity term, ``(n,)``."""
+        cfg = self.config
+        assert self._filter is not None
+        predicted = self._state.copy()
+        if cfg.velocity:
+            predicted[4:] += cfg.velocity * self._velocity
+        window_box = self._from_work(affine_to_box(predicted))
+        boxes = self._from_work(affine_to_box(states))
+        centres = boxes[:, :2] + (boxes[:, 2:] - 1.0) / 2.0
+        return cfg.correlation_weight * (1.0 - self._filter.scores(frame, window_box, centres))
 
     def _probe_distance(self, states: np.ndarray) -> np.ndarray:
         """(m,) squared distance of each probe's translation from this frame's

@@ -1,0 +1,299 @@
+"""Correlation term: a discriminative correlation filter's response at each candidate.
+
+The views compare a candidate with the templates; the foreground term with a
+color model of the first frame. Neither learns, frame by frame, what tells
+the target from the background *around it now*. A correlation filter does
+(MOSSE, Bolme et al., CVPR 2010; multi-channel as in DSST, Danelljan et al.,
+BMVC 2014): a linear filter ``h`` over a window about the target, trained in
+the Fourier domain so that its correlation with the window's features is a
+Gaussian peaked on the target's centre, and updated from every chosen box at
+a small rate. Its response over a new frame's window peaks where the target
+moved; every candidate is scored by the response at its centre.
+
+The window is the box grown ``PADDING`` times about its centre, resampled so
+that the box's square root of area spans ``BOX_PIXELS`` pixels (the window's
+size in those pixels is fixed at the first frame; its size in the frame
+follows the box's scale). The features per ``CELL`` x ``CELL`` cell: the
+mean gray level and ``ORIENTATIONS`` unsigned gradient-orientation energies
+(square roots of the cell's gradient magnitudes per orientation bin), all
+times a Hann window.
+
+The tracker adds ``weight * (1 - r_i / r_max)`` to each candidate's residual
+(``TrackerConfig.correlation_weight``), ``r_i`` the response at its centre
+clipped to ``[0, r_max]`` and ``r_max`` the response's peak over the window:
+0 on the peak, ``weight`` where the filter sees nothing of the target. It is
+known before coding, so bounded coding stays exact
+(:func:`smtmvt.likelihood.observe`'s ``offset``).
+
+It helps where the target's look drifts from the templates or a similar
+object crosses it (Walking2, Bolt, Basketball, Freeman1), and costs where
+the filter, trained on the tracker's own choices, follows a box that slid
+off the target (Singer2): at weight 1 it cost as much as it gained, at 0.5
+it gains on the mean (``TrackerConfig``, note [32]).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import cv2
+import numpy as np
+
+__all__ = [
+    "CELL",
+    "PADDING",
+    "BOX_PIXELS",
+    "ORIENTATIONS",
+    "LEARNING_RATE",
+    "REGULARIZATION",
+    "Window",
+    "window_shape",
+    "window_at",
+    "window_features",
+    "gaussian_label",
+    "Filter",
+    "train",
+    "blend",
+    "respond",
+    "sample",
+    "CorrelationFilter",
+]
+
+#: Cell side, window pixels.
+CELL = 4
+#: The window: the box grown this many times about its centre.
+PADDING = 2.5
+#: The box's square root of area, in window pixels.
+BOX_PIXELS = 48.0
+#: Unsigned gradient-orientation bins per cell.
+ORIENTATIONS = 9
+#: Rate at which each frame's filter enters the model (KCF's 0.02).
+LEARNING_RATE = 0.02
+#: Ridge term added to the features' energy spectrum.
+REGULARIZATION = 1e-2
+#: Standard deviation of the label's peak, as a fraction of the box's square root of area (KCF's 0.1).
+LABEL_SIGMA = 0.1
+
+
+@dataclass(frozen=True)
+class Window:
+    """Where a window lies on the frame.
+
+    ``origin`` : (x, y) frame pixel coordinates of the window's pixel (0, 0)
+    centre; ``step`` : (sx, sy) frame pixels per window pixel; ``size`` :
+    (height, width) window pixels, multiples of ``CELL``.
+    """
+
+    origin: tuple[float, float]
+    step: tuple[float, float]
+    size: tuple[int, int]
+
+    def cells(self, points) -> np.ndarray:
+        """Frame points ``(n, 2)`` ``(x, y)`` as cell coordinates ``(n, 2)``
+        ``(u, v)`` (cell ``j``'s centre at ``j``), float64."""
+        p = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+        wx = (p[:, 0] - self.origin[0]) / self.step[0]
+        wy = (p[:, 1] - self.origin[1]) / self.step[1]
+        return np.stack([(wx + 0.5) / CELL - 0.5, (wy + 0.5) / CELL - 0.5], axis=1)
+
+
+def window_shape(box) -> tuple[int, int]:
+    """Window ``(height, width)`` in window pixels for a box ``(x, y, w, h)``:
+    the box grown ``PADDING`` times, its square root of area ``BOX_PIXELS``,
+    rounded to an odd number of whole cells (at least 5 a side), so that the
+    window's centre is a cell's centre."""
+    w, h = float(box[2]), float(box[3])
+    if not (w > 0 and h > 0):
+        raise ValueError(f"correlation window: box {tuple(box)} has no area")
+    k = BOX_PIXELS / np.sqrt(w * h)
+    cells = [max(5, int(round(PADDING * s * k / CELL))) for s in (h, w)]
+    return (CELL * (cells[0] | 1), CELL * (cells[1] | 1))
+
+
+def window_at(center, box_size, size) -> Window:
+    """The window of ``size`` (height, width) window pixels centred on the
+    frame point ``center`` ``(x, y)`` for a box of ``box_size`` ``(w, h)``
+    frame pixels (``PADDING`` times the box spans the window)."""
+    H, W = size
+    sx = PADDING * float(box_size[0]) / W
+    sy = PADDING * float(box_size[1]) / H
+    # window pixel i's centre sits at origin + i * step; the window's centre ((W - 1) / 2) on center
+    origin = (float(center[0]) - (W - 1) / 2.0 * sx, float(center[1]) - (H - 1) / 2.0 * sy)
+    return Window(origin, (sx, sy), (int(H), int(W)))
+
+
+def _unit(frame: np.ndarray) -> float:
+    """The value of white in ``frame``: 255 for uint8, 65535 for uint16, and
+    for floats 1 when their maximum is at most 1, 255 otherwise (the
+    convention of :mod:`smtmvt.preprocess`)."""
+    f = np.asarray(frame)
+    if f.dtype == np.uint8:
+        return 255.0
+    if f.dtype == np.uint16:
+        return 65535.0
+    return 255.0 if float(f.max(initial=0.0)) > 1.0 else 1.0
+
+
+def _resample(frame: np.ndarray, window: Window) -> np.ndarray:
+    """The frame's gray level (the mean of its channels, in [0, 1]) on the
+    window's pixels, ``(H, W)`` float32, the frame smoothed first where the
+    window is coarser than the frame (anti-aliasing) and its border
+    replicated outside it. Only the part of the frame the window reads is
+    converted; a fourth (alpha) channel is left out."""
+    H, W = window.size
+    sx, sy = window.step
+    x0, y0 = window.origin
+    # the frame part the window reads (with a margin for the blur and interpolation)
+    margin = 3.0 * max(sx, sy, 1.0)
+    fx0, fy0 = int(np.floor(x0 - margin)), int(np.floor(y0 - margin))
+    fx1, fy1 = int(np.ceil(x0 + (W - 1) * sx + margin)) + 1, int(np.ceil(y0 + (H - 1) * sy + margin)) + 1
+    f = np.asarray(frame)
+    rows = np.clip(np.arange(fy0, fy1), 0, f.shape[0] - 1)
+    cols = np.clip(np.arange(fx0, fx1), 0, f.shape[1] - 1)
+    crop = f[rows][:, cols].astype(np.float32)
+    gray = crop if crop.ndim == 2 else crop[:, :, :3].mean(axis=2)
+    part: np.ndarray = np.ascontiguousarray(np.clip(gray / _unit(f), 0.0, 1.0), dtype=np.float32)
+    s = max(sx, sy)
+    if s > 1.0:
+        part = cv2.GaussianBlur(part, (0, 0), sigmaX=0.5 * sx if sx > 1 else 0.3, sigmaY=0.5 * sy if sy > 1 else 0.3)
+    M = np.array([[sx, 0.0, x0 - fx0], [0.0, sy, y0 - fy0]], dtype=np.float64)
+    return cv2.warpAffine(
+        part, M, (W, H), flags=cv2.INTER_LINEAR | cv2.WARP_INVERSE_MAP, borderMode=cv2.BORDER_REPLICATE
+    )
+
+
+def _hann(shape) -> np.ndarray:
+    """Separable Hann window ``shape`` float32."""
+    return np.outer(np.hanning(shape[0] + 2)[1:-1], np.hanning(shape[1] + 2)[1:-1]).astype(np.float32)
+
+
+def window_features(frame: np.ndarray, window: Window) -> np.ndarray:
+    """Cell features of the window, ``(C, h, w)`` float32, ``C = ORIENTATIONS + 1``.
+
+    ``frame`` : (H, W) or (H, W, C) image, uint8, uint16 or float
+    (:func:`_unit`); its gray level is the mean of its channels (independent
+    of their order). Channel 0 is the cell's mean gray
+    level less 0.5; channels 1.. the square roots of the cell's mean gradient
+    magnitude per unsigned orientation bin; all times a Hann window over the
+    cells.
+    """
+    img = _resample(frame, window)
+    H, W = img.shape
+    h, w = H // CELL, W // CELL
+    gx = cv2.Sobel(img, cv2.CV_32F, 1, 0, ksize=1)
+    gy = cv2.Sobel(img, cv2.CV_32F, 0, 1, ksize=1)
+    mag = np.hypot(gx, gy)
+    angle = np.mod(np.arctan2(gy, gx), np.pi)
+    b = np.minimum((angle * (ORIENTATIONS / np.pi)).astype(np.intp), ORIENTATIONS - 1)
+    energy = np.zeros((ORIENTATIONS, H, W), np.float32)
+    np.put_along_axis(energy, b[None], mag[None], axis=0)
+    cells = energy.reshape(ORIENTATIONS, h, CELL, w, CELL).mean(axis=(2, 4))
+    mean = img.reshape(h, CELL, w, CELL).mean(axis=(1, 3)) - 0.5
+    feats = np.concatenate([mean[None], np.sqrt(cells)], axis=0)
+    return feats * _hann((h, w))[None]
+
+
+def gaussian_label(cells_shape, box_cells: float) -> np.ndarray:
+    """The desired response, ``(h, w)`` float64: a Gaussian of standard deviation
+    ``LABEL_SIGMA * box_cells`` cells peaked on the window's centre
+    (cell coordinate ``((w - 1) / 2, (h - 1) / 2)``)."""
+    h, w = cells_shape
+    sigma = max(LABEL_SIGMA * box_cells, 0.5)
+    v = np.arange(h) - (h - 1) / 2.0
+    u = np.arange(w) - (w - 1) / 2.0
+    return np.exp(-0.5 * (v[:, None] ** 2 + u[None, :] ** 2) / sigma**2)
+
+
+@dataclass(frozen=True)
+class Filter:
+    """A multi-channel correlation filter in the Fourier domain: numerator
+    ``A`` ``(C, h, w)`` complex128 and denominator ``B`` ``(h, w)`` float64
+    (the features' energy spectrum)."""
+
+    A: np.ndarray
+    B: np.ndarray
+
+
+def train(features: np.ndarray, label: np.ndarray) -> Filter:
+    """The filter whose correlation with ``features`` ``(C, h, w)`` is ``label``
+    ``(h, w)`` (up to the ridge term): ``A_c = conj(G) F_c``,
+    ``B = sum_c |F_c|^2``."""
+    F = np.fft.fft2(features, axes=(-2, -1))
+    G = np.fft.fft2(label)
+    return Filter(np.conj(G)[None] * F, np.sum(np.abs(F) ** 2, axis=0))
+
+
+def blend(model: Filter, new: Filter, rate: float) -> Filter:
+    """``(1 - rate) * model + rate * new``, numerator and denominator alike."""
+    return Filter((1.0 - rate) * model.A + rate * new.A, (1.0 - rate) * model.B + rate * new.B)
+
+
+def respond(model: Filter, features: np.ndarray) -> np.ndarray:
+    """The filter's response over a window's ``features`` ``(C, h, w)``,
+    ``(h, w)`` float64: ``IFFT(sum_c conj(A_c) Z_c / (B + lambda))``, with
+    ``lambda`` ``REGULARIZATION`` times the mean of ``B``; on the features it
+    was trained on, about the label."""
+    Z = np.fft.fft2(features, axes=(-2, -1))
+    ridge = REGULARIZATION * float(np.mean(model.B)) + 1e-12
+    return np.real(np.fft.ifft2(np.sum(np.conj(model.A) * Z, axis=0) / (model.B + ridge)))
+
+
+def sample(response: np.ndarray, cells) -> np.ndarray:
+    """The response at cell coordinates ``(n, 2)`` ``(u, v)``, bilinear,
+    ``(n,)`` float64; 0 outside the window."""
+    r = np.asarray(response, dtype=np.float64)
+    h, w = r.shape
+    c = np.asarray(cells, dtype=np.float64).reshape(-1, 2)
+    u, v = c[:, 0], c[:, 1]
+    inside = (u >= 0) & (u <= w - 1) & (v >= 0) & (v <= h - 1)
+    u, v = np.clip(u, 0, w - 1), np.clip(v, 0, h - 1)
+    u0, v0 = (
+        np.minimum(np.floor(u).astype(np.intp), w - 2 if w > 1 else 0),
+        np.minimum(np.floor(v).astype(np.intp), h - 2 if h > 1 else 0),
+    )
+    u1, v1 = np.minimum(u0 + 1, w - 1), np.minimum(v0 + 1, h - 1)
+    fu, fv = u - u0, v - v0
+    out = r[v0, u0] * (1 - fu) * (1 - fv) + r[v0, u1] * fu * (1 - fv) + r[v1, u0] * (1 - fu) * fv + r[v1, u1] * fu * fv
+    return np.where(inside, out, 0.0)
+
+
+class CorrelationFilter:
+    """The filter of one tracked target: trained on the first box, scored at
+    candidates' centres, updated from each chosen box at ``LEARNING_RATE``.
+
+    Boxes are ``(x, y, w, h)`` 0-based frame pixels; a box's centre is
+    ``(x + (w - 1) / 2, y + (h - 1) / 2)`` (:func:`smtmvt.geometry.box_to_affine`'s).
+    """
+
+    def __init__(self, frame: np.ndarray, box) -> None:
+        b = np.asarray(box, dtype=np.float64)
+        self.size = window_shape(b)
+        h, w = self.size[0] // CELL, self.size[1] // CELL
+        self._label = gaussian_label((h, w), BOX_PIXELS / CELL)
+        self.model = train(self._features(frame, b), self._label)
+
+    def _features(self, frame: np.ndarray, box) -> np.ndarray:
+        b = np.asarray(box, dtype=np.float64)
+        centre = (b[0] + (b[2] - 1) / 2.0, b[1] + (b[3] - 1) / 2.0)
+        return window_features(frame, window_at(centre, b[2:4], self.size))
+
+    def response(self, frame: np.ndarray, box) -> tuple[np.ndarray, Window]:
+        """The response ``(h, w)`` over the window about ``box`` in ``frame``, and the window."""
+        b = np.asarray(box, dtype=np.float64)
+        centre = (b[0] + (b[2] - 1) / 2.0, b[1] + (b[3] - 1) / 2.0)
+        window = window_at(centre, b[2:4], self.size)
+        return respond(self.model, window_features(frame, window)), window
+
+    def scores(self, frame: np.ndarray, box, centres) -> np.ndarray:
+        """``r_i / r_max`` clipped to [0, 1] for each centre ``(n, 2)`` ``(x, y)``
+        frame pixels, the window about ``box``; ``(n,)`` float64 (all 0 for a
+        response with no positive peak)."""
+        r, window = self.response(frame, box)
+        peak = float(r.max())
+        if not peak > 0:
+            return np.zeros(len(np.asarray(centres).reshape(-1, 2)))
+        return np.clip(sample(r, window.cells(centres)) / peak, 0.0, 1.0)
+
+    def update(self, frame: np.ndarray, box, rate: float = LEARNING_RATE) -> None:
+        """Blend in the filter trained on ``box`` in ``frame`` at ``rate``."""
+        self.model = blend(self.model, train(self._features(frame, box), self._label), rate)

@@ -1,0 +1,170 @@
+"""The correlation term: the filter finds a known shift, and the tracker adds its term."""
+
+import cv2
+import numpy as np
+import pytest
+from scipy import ndimage
+
+from smtmvt import Tracker, TrackerConfig
+from smtmvt.correlation import (
+    CELL,
+    CorrelationFilter,
+    gaussian_label,
+    respond,
+    sample,
+    train,
+    window_at,
+    window_features,
+    window_shape,
+)
+from smtmvt.demo import make_demo_sequence
+
+
+def _texture(h=240, w=320, seed=0):
+    rng = np.random.default_rng(seed)
+    img = cv2.GaussianBlur(rng.random((h, w)).astype(np.float32), (0, 0), 2.0)
+    return (img - img.min()) / (img.max() - img.min())
+
+
+def _shifted(img, dx, dy):
+    M = np.float32([[1, 0, dx], [0, 1, dy]])
+    return cv2.warpAffine(img, M, (img.shape[1], img.shape[0]), borderMode=cv2.BORDER_REFLECT)
+
+
+def test_window_centre_is_the_labels_peak_cell():
+    box = np.array([100.0, 80.0, 40.0, 30.0])
+    size = window_shape(box)
+    assert size[0] % CELL == 0 and size[1] % CELL == 0
+    centre = (box[0] + (box[2] - 1) / 2, box[1] + (box[3] - 1) / 2)
+    win = window_at(centre, box[2:], size)
+    h, w = size[0] // CELL, size[1] // CELL
+    np.testing.assert_allclose(win.cells([centre])[0], [(w - 1) / 2, (h - 1) / 2], atol=1e-9)
+    label = gaussian_label((h, w), 12.0)
+    # a Gaussian about the window's centre cell coordinate (between cells when a side is even)
+    v, u = np.mgrid[0:h, 0:w]
+    np.testing.assert_allclose(
+        [(label * u).sum() / label.sum(), (label * v).sum() / label.sum()], [(w - 1) / 2, (h - 1) / 2]
+    )
+    np.testing.assert_allclose(label, np.exp(-0.5 * ((u - (w - 1) / 2) ** 2 + (v - (h - 1) / 2) ** 2) / 1.2**2))
+    # the window spans the box grown 2.5 times: its corner cells lie 1.25 box sides from the centre
+    corner = win.cells([(centre[0] - 1.25 * box[2], centre[1] - 1.25 * box[3])])[0]
+    np.testing.assert_allclose(corner, [-0.5, -0.5], atol=0.2)
+
+
+def test_trained_filter_returns_its_label_on_its_own_features():
+    img, box = _texture(), np.array([120.0, 90.0, 48.0, 36.0])
+    size = window_shape(box)
+    centre = (box[0] + (box[2] - 1) / 2, box[1] + (box[3] - 1) / 2)
+    feats = window_features(img, window_at(centre, box[2:], size))
+    assert feats.shape == (10, size[0] // CELL, size[1] // CELL) and feats.dtype == np.float32
+    label = gaussian_label(feats.shape[1:], 12.0)
+    r = respond(train(feats, label), feats)
+    # up to the ridge term, which shrinks it
+    assert np.unravel_index(np.argmax(r), r.shape) == np.unravel_index(np.argmax(label), label.shape)
+    assert np.corrcoef(r.ravel(), label.ravel())[0, 1] > 0.95
+
+
+@pytest.mark.parametrize("dx, dy", [(0, 0), (7, -4), (-12, 9), (18, 13)])
+def test_scores_peak_at_the_targets_shift(dx, dy):
+    img, box = _texture(), np.array([140.0, 100.0, 60.0, 40.0])
+    cf = CorrelationFilter(img, box)
+    cx, cy = box[0] + (box[2] - 1) / 2, box[1] + (box[3] - 1) / 2
+    offsets = np.array([(a, b) for b in range(-25, 26) for a in range(-25, 26)], np.float64)
+    s = cf.scores(_shifted(img, dx, dy), box, offsets + (cx, cy))
+    assert s.min() >= 0.0 and s.max() <= 1.0
+    found = offsets[np.argmax(s)]
+    assert np.abs(found - (dx, dy)).max() <= 1.5
+
+
+def test_scores_fall_off_the_target():
+    img, box = _texture(), np.array([140.0, 100.0, 60.0, 40.0])
+    cf = CorrelationFilter(img, box)
+    cx, cy = box[0] + (box[2] - 1) / 2, box[1] + (box[3] - 1) / 2
+    s = cf.scores(img, box, [(cx, cy), (cx + 30, cy), (cx, cy - 25), (cx + 500, cy)])
+    assert s[0] > 0.9 and s[1] < 0.5 and s[2] < 0.5
+    assert s[3] == 0.0  # outside the window
+
+
+def test_update_blends_the_new_boxs_filter_at_its_rate():
+    img, box = _texture(), np.array([140.0, 100.0, 60.0, 40.0])
+    cf = CorrelationFilter(img, box)
+    before = cf.model
+    moved, moved_box = _shifted(img, 5, -3), box + (5, -3, 0, 0)
+    new = train(cf._features(moved, moved_box), cf._label)
+    cf.update(moved, moved_box, rate=0.25)
+    assert cf.size == window_shape(box)  # the window's pixels stay those of the first box
+    np.testing.assert_allclose(cf.model.A, 0.75 * before.A + 0.25 * new.A, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(cf.model.B, 0.75 * before.B + 0.25 * new.B, rtol=1e-12)
+
+
+def test_sample_is_scipys_bilinear_inside_and_zero_outside():
+    rng = np.random.default_rng(3)
+    r = rng.normal(size=(9, 13))
+    pts = np.column_stack([rng.uniform(0, 12, 50), rng.uniform(0, 8, 50)])
+    pts = np.vstack([pts, [[0, 0], [12, 8], [12, 0], [0, 8]]])
+    ref = ndimage.map_coordinates(r, [pts[:, 1], pts[:, 0]], order=1)
+    np.testing.assert_allclose(sample(r, pts), ref, atol=1e-12)
+    assert sample(r, [[-0.1, 3], [5, 8.2]]).tolist() == [0.0, 0.0]
+
+
+def test_orientation_channels_see_the_gradients_direction():
+    # vertical stripes have horizontal gradients only (orientation bin 0), horizontal ones vertical (bin 4: 90 deg)
+    vertical = np.tile(0.5 + 0.4 * np.sin(np.arange(320) / 3.0), (240, 1)).astype(np.float32)
+    horizontal = np.tile(0.5 + 0.4 * np.sin(np.arange(240) / 3.0)[:, None], (1, 320)).astype(np.float32)
+    box = np.array([130.0, 90.0, 48.0, 48.0])
+    win = window_at((box[0] + 23.5, box[1] + 23.5), box[2:], window_shape(box))
+    for img, expected in ((vertical, 0), (horizontal, 4)):
+        energy = window_features(img, win)[1:].sum(axis=(1, 2))
+        assert np.argmax(energy) == expected and energy[expected] > 0.8 * energy.sum()
+
+
+def test_features_read_any_frame_type_by_its_white():
+    rng = np.random.default_rng(2)
+    rgb8 = (rng.random((120, 160, 3)) * 255).astype(np.uint8)
+    gray = rgb8.astype(np.float32).mean(axis=2) / 255.0  # the mean of the channels, in [0, 1]
+    box = np.array([60.0, 40.0, 30.0, 24.0])
+    win = window_at((box[0] + 14.5, box[1] + 11.5), box[2:], window_shape(box))
+    ref = window_features(gray, win)
+    variants = {
+        "uint8": rgb8,
+        "uint16": rgb8.astype(np.uint16) * 257,
+        "float 0-255": rgb8.astype(np.float32),
+        "RGBA": np.dstack([rgb8, np.full(rgb8.shape[:2], 7, np.uint8)]),
+    }
+    for name, frame in variants.items():
+        np.testing.assert_allclose(window_features(frame, win), ref, atol=1e-5, err_msg=name)
+
+
+def test_config_checks_the_weight_and_the_paper_has_none():
+    with pytest.raises(ValueError, match="correlation_weight"):
+        TrackerConfig(correlation_weight=-1.0)
+    assert TrackerConfig().correlation_weight == 0.5  # the default (config note [32])
+    assert TrackerConfig.paper().correlation_weight == 0.0
+
+
+@pytest.fixture(scope="module")
+def demo():
+    return make_demo_sequence(n_frames=120)
+
+
+def test_tracker_adds_the_term_in_its_range(demo):
+    frames, box = demo.frames, demo.groundtruth[0]
+    t = Tracker(TrackerConfig(correlation_weight=0.7, n_particles=100, seed=0))
+    t.init(frames[0], box)
+    plain = Tracker(TrackerConfig(correlation_weight=0.0, n_particles=100, seed=0))
+    plain.init(frames[0], box)
+    states = t._particles
+    term = t._correlation(frames[1], states)
+    assert term.shape == (len(states),) and term.min() >= 0.0 and term.max() <= 0.7 + 1e-12
+    # the first frame's box is the window's centre: its own term is near 0 on the first frame
+    assert t._correlation(frames[0], t._state[None])[0] < 0.1 * 0.7
+    # the likelihood of every candidate coded by both gains exactly exp(-alpha * term)
+    before = Tracker(t.config)  # t as it was before the update
+    before.init(frames[0], box)
+    (_, da), (_, db) = t.update_detailed(frames[1]), plain.update_detailed(frames[1])
+    np.testing.assert_array_equal(da.particles, db.particles)
+    term = before._correlation(frames[1], da.particles)
+    both = da.observation.coded & db.observation.coded & (db.observation.likelihood > 1e-250)
+    assert both.sum() >= 5 and np.ptp(term[both]) > 0.05
+    ratio = np.log(da.observation.likelihood[both] / db.observation.likelihood[both])
+    np.testing.assert_allclose(ratio, -t.config.alpha * term[both], rtol=1e-6, atol=1e-6)
