@@ -39,6 +39,9 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
+from .geometry import box_to_affine
+from .preprocess import white_level
+
 __all__ = [
     "CELL",
     "PADDING",
@@ -122,18 +125,6 @@ def window_at(center, box_size, size) -> Window:
     return Window(origin, (sx, sy), (int(H), int(W)))
 
 
-def _unit(frame: np.ndarray) -> float:
-    """The value of white in ``frame``: 255 for uint8, 65535 for uint16, and
-    for floats 1 when their maximum is at most 1, 255 otherwise (the
-    convention of :mod:`smtmvt.preprocess`)."""
-    f = np.asarray(frame)
-    if f.dtype == np.uint8:
-        return 255.0
-    if f.dtype == np.uint16:
-        return 65535.0
-    return 255.0 if float(f.max(initial=0.0)) > 1.0 else 1.0
-
-
 def _resample(frame: np.ndarray, window: Window) -> np.ndarray:
     """The frame's gray level (the mean of its channels, in [0, 1]) on the
     window's pixels, ``(H, W)`` float32, the frame smoothed first where the
@@ -152,7 +143,7 @@ def _resample(frame: np.ndarray, window: Window) -> np.ndarray:
     cols = np.clip(np.arange(fx0, fx1), 0, f.shape[1] - 1)
     crop = f[rows][:, cols].astype(np.float32)
     gray = crop if crop.ndim == 2 else crop[:, :, :3].mean(axis=2)
-    part: np.ndarray = np.ascontiguousarray(np.clip(gray / _unit(f), 0.0, 1.0), dtype=np.float32)
+    part: np.ndarray = np.ascontiguousarray(np.clip(gray / white_level(f), 0.0, 1.0), dtype=np.float32)
     s = max(sx, sy)
     if s > 1.0:
         part = cv2.GaussianBlur(part, (0, 0), sigmaX=0.5 * sx if sx > 1 else 0.3, sigmaY=0.5 * sy if sy > 1 else 0.3)
@@ -171,7 +162,7 @@ def window_features(frame: np.ndarray, window: Window) -> np.ndarray:
     """Cell features of the window, ``(C, h, w)`` float32, ``C = ORIENTATIONS + 1``.
 
     ``frame`` : (H, W) or (H, W, C) image, uint8, uint16 or float
-    (:func:`_unit`); its gray level is the mean of its channels (independent
+    (:func:`smtmvt.preprocess.white_level`); its gray level is the mean of its channels (independent
     of their order). Channel 0 is the cell's mean gray
     level less 0.5; channels 1.. the square roots of the cell's mean gradient
     magnitude per unsigned orientation bin; all times a Hann window over the
@@ -272,16 +263,17 @@ class CorrelationFilter:
         self._label = gaussian_label((h, w), BOX_PIXELS / CELL)
         self.model = train(self._features(frame, b), self._label)
 
-    def _features(self, frame: np.ndarray, box) -> np.ndarray:
+    def _window(self, box) -> Window:
+        """The window about ``box`` (its centre, its size)."""
         b = np.asarray(box, dtype=np.float64)
-        centre = (b[0] + (b[2] - 1) / 2.0, b[1] + (b[3] - 1) / 2.0)
-        return window_features(frame, window_at(centre, b[2:4], self.size))
+        return window_at(box_to_affine(b)[4:], b[2:4], self.size)
+
+    def _features(self, frame: np.ndarray, box) -> np.ndarray:
+        return window_features(frame, self._window(box))
 
     def response(self, frame: np.ndarray, box) -> tuple[np.ndarray, Window]:
         """The response ``(h, w)`` over the window about ``box`` in ``frame``, and the window."""
-        b = np.asarray(box, dtype=np.float64)
-        centre = (b[0] + (b[2] - 1) / 2.0, b[1] + (b[3] - 1) / 2.0)
-        window = window_at(centre, b[2:4], self.size)
+        window = self._window(box)
         return respond(self.model, window_features(frame, window)), window
 
     def scores(self, frame: np.ndarray, box, centres) -> np.ndarray:

@@ -29,6 +29,7 @@ __all__ = [
     "smooth",
     "smooth_reach",
     "to_unit_range",
+    "white_level",
 ]
 
 
@@ -109,12 +110,21 @@ def _checked_image(frame, where: str) -> np.ndarray:
     return a
 
 
-def _unit_float(a: np.ndarray, where: str) -> np.ndarray:
-    """A checked image as float32 in [0, 1] by its dtype."""
+def white_level(a: np.ndarray) -> float:
+    """The value of white in an image of uint8 (255), uint16 (65535) or float
+    values: 1 when the floats' maximum is at most 1, 255 otherwise (the
+    convention of this module's docstring)."""
     if a.dtype == np.uint8:
-        return a.astype(np.float32) / 255.0
+        return 255.0
     if a.dtype == np.uint16:
-        return a.astype(np.float32) / 65535.0
+        return 65535.0
+    return 255.0 if float(np.max(a, initial=0.0)) > 1.0 else 1.0
+
+
+def _unit_float(a: np.ndarray, where: str) -> np.ndarray:
+    """A checked image as float32 in [0, 1] by its dtype (:func:`white_level`)."""
+    if a.dtype in (np.uint8, np.uint16):
+        return a.astype(np.float32) / white_level(a)
     if a.dtype == np.bool_ or np.issubdtype(a.dtype, np.integer):
         raise ValueError(f"{where}: unsupported integer dtype {a.dtype} (use uint8 or uint16)")
     if not np.issubdtype(a.dtype, np.floating):
@@ -122,8 +132,9 @@ def _unit_float(a: np.ndarray, where: str) -> np.ndarray:
     f = a.astype(np.float32)
     if not np.all(np.isfinite(f)):
         raise ValueError(f"{where}: image contains NaN or infinite values")
-    if f.max(initial=0.0) > 1.0:
-        f = f / 255.0
+    white = white_level(f)
+    if white != 1.0:
+        f = f / white
     return np.clip(f, 0.0, 1.0)
 
 

@@ -647,10 +647,7 @@ class Tracker:
         now = cfg.views[: self._n_first]
         X = self._extract(patches, now)
         with self._timed("likelihood"):
-            offset = self._offsets(X, prepared, probe_planes, particles, probe_states, plane_scale)
-            if self._filter is not None:
-                corr = self._correlation(frame, np.concatenate([particles, probe_states]))
-                offset = corr if offset is None else offset + corr
+            offset = self._offsets(frame, X, prepared, probe_planes, particles, probe_states, plane_scale)
         # A candidate mostly outside the image is not a valid observation.
         with self._timed("motion"):
             valid = inside_fraction(states, work_shape) >= 0.5
@@ -674,9 +671,9 @@ class Tracker:
         )
         return obs, later.views_of
 
-    def _offsets(self, X, prepared, probe_planes, particles, probe_states, plane_scale: float):
+    def _offsets(self, frame, X, prepared, probe_planes, particles, probe_states, plane_scale: float):
         """Each candidate's terms added to its residual (background, anchor,
-        foreground; ``(n + m,)``), or None when all are off."""
+        motion, foreground, correlation; ``(n + m,)``), or None when all are off."""
         cfg = self.config
         offset = None
         # the term views at hand: a deferred one brings its part of the anchor term when it is
@@ -700,21 +697,28 @@ class Tracker:
                 contrast = np.concatenate([contrast, self._contrast(probe_planes, probe_states, plane_scale)])
             fg = cfg.foreground_weight * (1.0 - contrast)
             offset = fg if offset is None else offset + fg
+        if self._filter is not None:
+            corr = self._correlation(frame, np.concatenate([particles, probe_states]))
+            offset = corr if offset is None else offset + corr
         return offset
 
     def _correlation(self, frame, states: np.ndarray) -> np.ndarray:
         """The correlation term of each state ``(n, 6)`` (working frame):
         ``weight * (1 - r_i / r_max)`` (:mod:`smtmvt.correlation`), the filter's
         window about the last box moved by the velocity term, ``(n,)``."""
-        cfg = self.config
         assert self._filter is not None
+        window_box = self._from_work(affine_to_box(self._predicted()))
+        centres = box_to_affine(self._from_work(affine_to_box(states)))[:, 4:]
+        return self.config.correlation_weight * (1.0 - self._filter.scores(frame, window_box, centres))
+
+    def _predicted(self) -> np.ndarray:
+        """This frame's prediction ``(6,)``: the last state, its translation
+        moved by the velocity term."""
+        cfg = self.config
         predicted = self._state.copy()
         if cfg.velocity:
             predicted[4:] += cfg.velocity * self._velocity
-        window_box = self._from_work(affine_to_box(predicted))
-        boxes = self._from_work(affine_to_box(states))
-        centres = boxes[:, :2] + (boxes[:, 2:] - 1.0) / 2.0
-        return cfg.correlation_weight * (1.0 - self._filter.scores(frame, window_box, centres))
+        return predicted
 
     def _probe_distance(self, states: np.ndarray) -> np.ndarray:
         """(m,) squared distance of each probe's translation from this frame's
@@ -723,9 +727,8 @@ class Tracker:
         (:func:`smtmvt.motion.translation_distance`): the motion term of a
         probe, which has no parent particle."""
         cfg = self.config
-        predicted = self._state[4:] + (cfg.velocity * self._velocity if cfg.velocity else 0.0)
         return translation_distance(
-            states, predicted, translation_std(self._state, cfg.affine_std, cfg.translation_power)
+            states, self._predicted()[4:], translation_std(self._state, cfg.affine_std, cfg.translation_power)
         )
 
     def _decide(self, particles, obs, views_of, probe_boxes, prepared, plane_scale: float):
