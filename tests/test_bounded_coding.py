@@ -240,7 +240,10 @@ def test_frame_size_tracks_in_the_working_frame_and_maps_boxes_back(demo):
     frames = demo.frames[:6]
     H, W = frames[0].shape[:2]
     big = [np.repeat(np.repeat(f, 2, axis=0), 2, axis=1) for f in frames]
-    cfg = TrackerConfig(n_particles=60, seed=2)
+    # without the correlation filter, which reads the input frame itself (its window is
+    # resampled to a fixed size, so a 2x frame gives nearly, not exactly, the same response,
+    # and a particle placed at its peak or a resampling count can differ)
+    cfg = TrackerConfig(n_particles=60, seed=2, correlation_weight=0.0, correlation_particles=0.0)
     box = np.asarray(demo.groundtruth[0], dtype=float)
 
     def run(fr, b, c):

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from smtmvt.geometry import affine_scale, box_to_affine
-from smtmvt.motion import propagate, resample
+from smtmvt.motion import place, propagate, resample
 
 
 def test_propagate_statistics_scale_with_target():
@@ -171,7 +171,8 @@ def test_motion_term_weighs_each_particle_by_its_own_step():
     from smtmvt.demo import make_demo_sequence
 
     demo = make_demo_sequence(n_frames=2)
-    cfg = TrackerConfig(n_particles=60, seed=1)
+    # only the walk's particles: those placed at the correlation filter's peak all take short steps
+    cfg = TrackerConfig(n_particles=60, seed=1, correlation_particles=0.0)
 
     def first_frame(weight):
         t = Tracker(cfg.replace(motion_weight=weight))
@@ -207,3 +208,24 @@ def test_a_particles_step_is_its_own_random_draw():
     moved = t._propagate()
     noise = draws.standard_normal(moved.shape)
     np.testing.assert_allclose(translation_distance(moved, *t._steps), (noise[:, 4:] ** 2).sum(1), rtol=1e-9)
+
+
+def test_place_moves_the_last_states_about_the_point_and_keeps_their_shape():
+    rng = np.random.default_rng(0)
+    p = np.tile(box_to_affine(np.array([10.0, 20.0, 30.0, 40.0])), (2000, 1))
+    p[:, 0] *= np.linspace(0.9, 1.1, 2000)
+    out = place(p, 1500, (200.0, -50.0), (2.0, 5.0), rng)
+    np.testing.assert_array_equal(out[:500], p[:500])
+    np.testing.assert_array_equal(out[:, :4], p[:, :4])
+    moved = out[500:, 4:]
+    np.testing.assert_allclose(moved.mean(axis=0), (200.0, -50.0), atol=0.3)
+    np.testing.assert_allclose(moved.std(axis=0), (2.0, 5.0), rtol=0.06)
+    # the draws are the generator's next (count, 2) standard normals
+    again = np.random.default_rng(0).standard_normal((1500, 2))
+    np.testing.assert_allclose(moved, (200.0, -50.0) + again * (2.0, 5.0), rtol=1e-12)
+    # nothing placed: the same states, no draw
+    state = rng.bit_generator.state
+    np.testing.assert_array_equal(place(p, 0, (0.0, 0.0), (1.0, 1.0), rng), p)
+    assert rng.bit_generator.state == state
+    with pytest.raises(ValueError, match="count 2001"):
+        place(p, 2001, (0.0, 0.0), (1.0, 1.0), rng)

@@ -227,3 +227,24 @@ def test_crop_context_below_one_is_rejected():
         TrackerConfig(crop_planes=True, crop_context=0.5)
     with pytest.raises(ValueError, match="crop_refresh"):
         TrackerConfig(crop_planes=True, crop_refresh=-1)
+
+
+@pytest.mark.parametrize(
+    "bad,match",
+    [
+        (np.full((12, 16, 3), np.nan, np.float32), "NaN"),
+        (np.full((12, 16), 1e300), "infinite"),
+        (np.zeros(50, np.uint8), "shape"),
+        (np.zeros((60, 80), np.int32), "dtype"),
+    ],
+)
+def test_check_frame_refuses_what_to_unit_range_refuses_without_converting(bad, match):
+    from smtmvt.preprocess import check_frame, to_unit_range
+
+    for check in (check_frame, to_unit_range):
+        with pytest.raises(ValueError, match=rf"frame 7: .*{match}"):
+            check(bad, "frame 7")
+    good = np.arange(48, dtype=np.uint16).reshape(4, 4, 3)
+    assert np.shares_memory(check_frame(good, "frame 7"), good)  # not converted
+    alpha = np.zeros((4, 5, 4), np.float32)
+    assert check_frame(alpha, "frame 7").shape == (4, 5, 3)

@@ -296,7 +296,10 @@ def test_report_aspect_reshapes_only_the_reported_box(demo):
 def test_velocity_fraction_moves_that_share_of_the_particles(demo):
     """velocity_fraction 0.5: every other particle is moved by the velocity term, the
     others stay (no noise here, so the motion is the shift alone)."""
-    cfg = FAST.replace(velocity=1.0, velocity_fraction=0.5, affine_std=(0.0,) * 6, n_particles=10)
+    # none placed at the correlation filter's peak (they would replace the last particle)
+    cfg = FAST.replace(
+        velocity=1.0, velocity_fraction=0.5, affine_std=(0.0,) * 6, n_particles=10, correlation_particles=0.0
+    )
     t = Tracker(cfg)
     t.init(demo.frames[0], demo.groundtruth[0])
     state = t._state.copy()

@@ -13,7 +13,8 @@ that weighs each candidate by the random walk's density
 (``motion_weight``), in an anchor term toward the first template in the
 likelihood (``anchor_weight``), in a foreground term from a color model of
 the first frame (``foreground_weight``), in a correlation term from a
-filter learned online (``correlation_weight``), in computing each frame's planes
+filter learned online (``correlation_weight``), in placing a tenth of the
+particles about that filter's peak (``correlation_particles``), in computing each frame's planes
 on the candidates' window only (``crop_planes``, a speed setting) and the
 coarse and HOG views only where the bounds need them (``deferred_views``, a
 speed setting), in reporting
@@ -995,6 +996,17 @@ class TrackerConfig:
         its residual in the likelihood gains ``rho (1 - r_i / r_max)``
         (``r_max`` the response's peak over the window). Default 0.5
         (measured in the table above, note [32]); 0: the paper's likelihood.
+    correlation_particles : float in [0, 1]
+        Fraction of the particles placed, each frame, about the peak of the
+        correlation filter's response (:func:`smtmvt.motion.place`; the
+        peak cell's centre plus normal noise of half a cell's standard
+        deviation), after the random walk: a proposal from what the filter
+        sees instead of from the last frame's particles alone. They keep the
+        shape of the particles they replace (the last ones, where resampling
+        puts copies of the best) and are scored like every other particle,
+        motion term included. The filter is learned when this or
+        ``correlation_weight`` is above 0. Default 0.1 (note [33]); 0: the
+        paper's random walk.
     motion_weight : float >= 0
         Weight ``w`` of the motion term: each particle's residual in the
         likelihood gains ``w d_i / (2 alpha)``, ``d_i`` the squared length of
@@ -1229,6 +1241,7 @@ class TrackerConfig:
     anchor_weight: float = 1.0
     foreground_weight: float = 1.0
     correlation_weight: float = 0.5
+    correlation_particles: float = 0.1
     motion_weight: float = 1.0
     term_views: tuple = ("intensity", "color", "hog")
     feature_size: tuple = (32, 32)
@@ -1296,6 +1309,7 @@ class TrackerConfig:
             "anchor_weight": self.anchor_weight >= 0,
             "foreground_weight": self.foreground_weight >= 0,
             "correlation_weight": self.correlation_weight >= 0,
+            "correlation_particles": 0 <= self.correlation_particles <= 1,
             "motion_weight": self.motion_weight >= 0,
             "estimate": self.estimate in ("best", "mean"),
             "fixed_templates": 1 <= int(self.fixed_templates) <= int(self.n_templates),
@@ -1367,6 +1381,7 @@ class TrackerConfig:
             anchor_weight=0.0,
             foreground_weight=0.0,
             correlation_weight=0.0,
+            correlation_particles=0.0,
             motion_weight=0.0,
             term_views=("intensity", "color", "hog"),
             feature_size=(32, 32),

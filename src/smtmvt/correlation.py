@@ -25,6 +25,11 @@ clipped to ``[0, r_max]`` and ``r_max`` the response's peak over the window:
 known before coding, so bounded coding stays exact
 (:func:`smtmvt.likelihood.observe`'s ``offset``).
 
+The tracker also places a fraction of each frame's particles about the
+response's peak (:func:`peak_point`; ``TrackerConfig.correlation_particles``),
+so that the search reaches where the filter sees the target even when the
+random walk does not.
+
 It helps where the target's look drifts from the templates or a similar
 object crosses it (Walking2, Bolt, Basketball, Freeman1), and costs where
 the filter, trained on the tracker's own choices, follows a box that slid
@@ -59,6 +64,8 @@ __all__ = [
     "blend",
     "respond",
     "sample",
+    "relative_scores",
+    "peak_point",
     "CorrelationFilter",
 ]
 
@@ -98,6 +105,14 @@ class Window:
         wx = (p[:, 0] - self.origin[0]) / self.step[0]
         wy = (p[:, 1] - self.origin[1]) / self.step[1]
         return np.stack([(wx + 0.5) / CELL - 0.5, (wy + 0.5) / CELL - 0.5], axis=1)
+
+    def points(self, cells) -> np.ndarray:
+        """Cell coordinates ``(n, 2)`` ``(u, v)`` as frame points ``(n, 2)``
+        ``(x, y)``, float64: the inverse of :meth:`cells`."""
+        c = np.asarray(cells, dtype=np.float64).reshape(-1, 2)
+        wx = (c[:, 0] + 0.5) * CELL - 0.5
+        wy = (c[:, 1] + 0.5) * CELL - 0.5
+        return np.stack([self.origin[0] + wx * self.step[0], self.origin[1] + wy * self.step[1]], axis=1)
 
 
 def window_shape(box) -> tuple[int, int]:
@@ -251,6 +266,24 @@ def sample(response: np.ndarray, cells) -> np.ndarray:
     return np.where(inside, out, 0.0)
 
 
+def relative_scores(response: np.ndarray, window: Window, centres) -> np.ndarray:
+    """``r_i / r_max`` clipped to [0, 1] for each frame point ``(n, 2)`` ``(x, y)``,
+    ``r_i`` the ``response`` ``(h, w)`` over ``window`` at the point
+    (:func:`sample`) and ``r_max`` its peak; ``(n,)`` float64 (all 0 for a
+    response with no positive peak)."""
+    peak = float(response.max())
+    if not peak > 0:
+        return np.zeros(len(np.asarray(centres).reshape(-1, 2)))
+    return np.clip(sample(response, window.cells(centres)) / peak, 0.0, 1.0)
+
+
+def peak_point(response: np.ndarray, window: Window) -> np.ndarray:
+    """The frame point ``(2,)`` ``(x, y)`` of the centre of the cell where
+    ``response`` ``(h, w)`` over ``window`` is highest (the first such cell)."""
+    v, u = np.unravel_index(int(np.argmax(response)), response.shape)
+    return window.points([(u, v)])[0]
+
+
 class CorrelationFilter:
     """The filter of one tracked target: trained on the first box, scored at
     candidates' centres, updated from each chosen box at ``LEARNING_RATE``.
@@ -283,11 +316,7 @@ class CorrelationFilter:
         """``r_i / r_max`` clipped to [0, 1] for each centre ``(n, 2)`` ``(x, y)``
         frame pixels, the window about ``box``; ``(n,)`` float64 (all 0 for a
         response with no positive peak)."""
-        r, window = self.response(frame, box)
-        peak = float(r.max())
-        if not peak > 0:
-            return np.zeros(len(np.asarray(centres).reshape(-1, 2)))
-        return np.clip(sample(r, window.cells(centres)) / peak, 0.0, 1.0)
+        return relative_scores(*self.response(frame, box), centres)
 
     def update(self, frame: np.ndarray, box, rate: float = LEARNING_RATE) -> None:
         """Blend in the filter trained on ``box`` in ``frame`` at ``rate``."""

@@ -16,7 +16,7 @@ import numpy as np
 
 from .geometry import affine_scale
 
-__all__ = ["propagate", "pull_shape", "resample", "translation_std", "translation_distance"]
+__all__ = ["propagate", "place", "pull_shape", "resample", "translation_std", "translation_distance"]
 
 
 def propagate(
@@ -110,6 +110,34 @@ def pull_shape(params, reference, strength: float) -> np.ndarray:
     p[:, 0] *= np.exp(-dr)
     p[:, 3] *= np.exp(dr)
     p[:, 1:3] += strength * (ref[1:3] - p[:, 1:3])
+    return p
+
+
+def place(params, count: int, point, std, rng: np.random.Generator) -> np.ndarray:
+    """The last ``count`` states moved about ``point``: a proposal from outside
+    the random walk (the correlation filter's peak, ``TrackerConfig.correlation_particles``).
+
+    Parameters
+    ----------
+    params : (n, 6) affine states.
+    count : how many of the last states to move (0 <= count <= n); their shape
+        (``a11 .. a22``) is kept.
+    point : (2,) translation ``(tx, ty)`` pixels they are placed about.
+    std : (2,) standard deviations ``(sx, sy)`` pixels of the normal noise
+        added to ``point``.
+    rng : numpy Generator (the tracker's seeded generator); draws ``(count, 2)``
+        standard normals, nothing when ``count`` is 0.
+
+    Returns
+    -------
+    (n, 6) float64 new states (a copy).
+    """
+    p = np.array(params, dtype=np.float64, copy=True, ndmin=2)
+    if not 0 <= count <= len(p):
+        raise ValueError(f"place: count {count} is not between 0 and the {len(p)} states")
+    if count:
+        noise = rng.standard_normal((count, 2)) * np.asarray(std, dtype=np.float64)
+        p[len(p) - count :, 4:] = np.asarray(point, dtype=np.float64) + noise
     return p
 
 

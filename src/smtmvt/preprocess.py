@@ -21,6 +21,8 @@ from .features.tan_triggs import TAN_TRIGGS_REACH, tan_triggs_scales
 
 __all__ = [
     "PreparedFrame",
+    "check_frame",
+    "checked_image",
     "plane_window",
     "prepare_crop",
     "prepare_frame",
@@ -77,7 +79,7 @@ def to_unit_range(frame: np.ndarray, where: str = "frame", crop=None) -> np.ndar
     8- or 16-bit frame is converted there only; a float frame is checked and
     scaled as a whole).
     """
-    a = _checked_image(frame, where)
+    a = checked_image(frame, where)
     if crop is not None:
         x0, y0, x1, y1 = _inside(crop, a.shape, f"{where}: crop", "image")
         if a.dtype in (np.uint8, np.uint16):
@@ -96,8 +98,10 @@ def _inside(window, shape, what: str, of: str) -> tuple[int, int, int, int]:
     return x0, y0, x1, y1
 
 
-def _checked_image(frame, where: str) -> np.ndarray:
-    """``frame`` as an (H, W) or (H, W, 3) array (alpha or a single channel dropped)."""
+def checked_image(frame, where: str) -> np.ndarray:
+    """``frame`` as an (H, W) or (H, W, 3) array (alpha or a single channel
+    dropped); any other shape, or a side under 2 pixels, raises ValueError
+    naming ``where``."""
     a = np.asarray(frame)
     if a.ndim == 3 and a.shape[2] == 4:
         a = a[:, :, :3]
@@ -121,17 +125,34 @@ def white_level(a: np.ndarray) -> float:
     return 255.0 if float(np.max(a, initial=0.0)) > 1.0 else 1.0
 
 
-def _unit_float(a: np.ndarray, where: str) -> np.ndarray:
-    """A checked image as float32 in [0, 1] by its dtype (:func:`white_level`)."""
+def check_frame(frame, where: str) -> np.ndarray:
+    """``frame`` checked as :func:`to_unit_range` checks it, not converted: the
+    image of :func:`checked_image`; a dtype other than uint8, uint16 or float,
+    or NaN or infinite values (as float32), raise ValueError naming ``where``."""
+    a = checked_image(frame, where)
+    _check_values(a, where)
+    return a
+
+
+def _check_values(a: np.ndarray, where: str) -> None:
+    """Raise ValueError naming ``where`` for a dtype other than uint8, uint16
+    or float, or for NaN or infinite values (as float32)."""
     if a.dtype in (np.uint8, np.uint16):
-        return a.astype(np.float32) / white_level(a)
+        return
     if a.dtype == np.bool_ or np.issubdtype(a.dtype, np.integer):
         raise ValueError(f"{where}: unsupported integer dtype {a.dtype} (use uint8 or uint16)")
     if not np.issubdtype(a.dtype, np.floating):
         raise ValueError(f"{where}: unsupported dtype {a.dtype}")
-    f = a.astype(np.float32)
-    if not np.all(np.isfinite(f)):
+    if not np.all(np.isfinite(a.astype(np.float32, copy=False))):
         raise ValueError(f"{where}: image contains NaN or infinite values")
+
+
+def _unit_float(a: np.ndarray, where: str) -> np.ndarray:
+    """A checked image as float32 in [0, 1] by its dtype (:func:`white_level`)."""
+    _check_values(a, where)
+    if a.dtype in (np.uint8, np.uint16):
+        return a.astype(np.float32) / white_level(a)
+    f = a.astype(np.float32)
     white = white_level(f)
     if white != 1.0:
         f = f / white
@@ -204,7 +225,7 @@ def prepare_crop(
     plane_shape``; inside the window its gray and color planes equal the whole
     plane's up to the resize's rounding (exactly, at scale 1).
     """
-    a = _checked_image(frame, where)
+    a = checked_image(frame, where)
     H, W = a.shape[:2]
     sx, sy = float(scale[0]), float(scale[1])
     stats = window if stats is None else stats

@@ -39,16 +39,17 @@ from threadpoolctl import ThreadpoolController
 from .anchor import anchor_offsets
 from .background import background_offsets, ring_states
 from .config import TrackerConfig
-from .correlation import CorrelationFilter
+from .correlation import CELL, CorrelationFilter, peak_point, relative_scores
 from .features import Patches, extract_views, intensity_template_size
 from .features.coarse import GAMMA_FLOOR
 from .features.tan_triggs import TAN_TRIGGS_GAMMA
 from .foreground import RING, box_contrast, foreground_map, foreground_model, ring_window
 from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine, box_with_aspect
 from .likelihood import Observation, observe
-from .motion import propagate, pull_shape, resample, translation_distance, translation_std
+from .motion import place, propagate, pull_shape, resample, translation_distance, translation_std
 from .preprocess import (
     PreparedFrame,
+    check_frame,
     plane_window,
     prepare_crop,
     prepare_frame,
@@ -487,7 +488,7 @@ class Tracker:
         # the foreground term's color model: the first box against its surroundings, on the whole frame
         self._fg_model = foreground_model(prepared.color, wb) if cfg.foreground_weight else None
         # the correlation term's filter, on the frame as given (not the working frame)
-        self._filter = CorrelationFilter(frame, b) if cfg.correlation_weight else None
+        self._filter = CorrelationFilter(frame, b) if cfg.correlation_weight or cfg.correlation_particles else None
         t_states = self._template_states(self._state)
         if self._crop and not cfg.crop_refresh:  # the templates' planes as every later frame's
             prepared = self._prepare(frame, "init frame", self._channels, 1.0, t_states)
@@ -581,27 +582,42 @@ class Tracker:
         self._frame_index += 1
         rng_state = self._rng.bit_generator.state
         plane_scale = self._plane_scale()
-        particles = self._propagate()
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         probe_states = box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)
-        with self._timed("preprocess"):
-            try:
+        try:
+            response = self._response(frame)
+            particles = self._propagate(response)
+            with self._timed("preprocess"):
                 prepared, probe_planes = self._prepare_candidates(frame, particles, probe_states, plane_scale)
-            except Exception:
-                # a frame that cannot be read leaves the tracker as it was
-                self._rng.bit_generator.state = rng_state
-                self._frame_index -= 1
-                raise
-        obs, views_of = self._observe(frame, prepared, probe_planes, particles, probe_states, plane_scale)
+        except Exception:
+            # a frame that cannot be read leaves the tracker as it was
+            self._rng.bit_generator.state = rng_state
+            self._frame_index -= 1
+            raise
+        obs, views_of = self._observe(frame, prepared, probe_planes, particles, probe_states, plane_scale, response)
         result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale)
         if self._filter is not None and detail.best is not None:
             with self._timed("likelihood"):
                 self._filter.update(frame, self._from_work(self._work_box))
         return result, detail
 
-    def _propagate(self) -> np.ndarray:
+    def _response(self, frame) -> tuple | None:
+        """The correlation filter's response over its window about this frame's
+        prediction, ``(response (h, w), Window)`` (:mod:`smtmvt.correlation`),
+        or None without the filter. The frame is checked first, so that a
+        frame that cannot be read is named as :meth:`_prepare` names it."""
+        if self._filter is None:
+            return None
+        check_frame(frame, f"frame {self._frame_index}")
+        with self._timed("likelihood"):
+            return self._filter.response(frame, self._from_work(affine_to_box(self._predicted())))
+
+    def _propagate(self, response=None) -> np.ndarray:
         """This frame's ``(n, 6)`` particles: the last frame's resampled by their
-        likelihoods, then moved by the random walk (and the velocity term)."""
+        likelihoods, then moved by the random walk (and the velocity term); with
+        the correlation filter's ``response`` (:meth:`_response`) and
+        ``config.correlation_particles``, that fraction of them (the last ones,
+        where resampling puts copies of the best) placed about its peak."""
         cfg = self.config
         with self._timed("motion"):
             particles = resample(self._particles, self._weights, cfg.n_particles)
@@ -614,6 +630,14 @@ class Tracker:
             if self._expand > 1.0:  # config.search_expand: a wider search after a poorly explained frame
                 std = (*std[:4], std[4] * self._expand, std[5] * self._expand)
             moved = propagate(particles, std, self._rng, shift, self._spread, cfg.translation_power, cfg.aspect_std)
+            count = int(round(cfg.correlation_particles * len(moved)))
+            if response is not None and count:
+                r, window = response
+                # about the peak cell's centre (as the centre of a one-pixel box, to map it to the
+                # working frame as box centres are), half a cell's standard deviation
+                point = box_to_affine(self._to_work(np.array([[*peak_point(r, window), 1.0, 1.0]])))[0, 4:]
+                step = self._to_work(np.array([[*window.step, 0.0, 0.0]]))[0, :2]
+                moved = place(moved, count, point, 0.5 * CELL * step, self._rng)
             # each particle's own prediction (its parent moved by the velocity term) and the
             # random walk's translation std there, for the motion term
             predicted = particles[:, 4:] + (0.0 if shift is None else shift)
@@ -631,8 +655,9 @@ class Tracker:
             probe_planes = self._prepare(frame, where, self._channels, plane_scale, probe_states)
         return prepared, probe_planes
 
-    def _observe(self, frame, prepared, probe_planes, particles, probe_states, plane_scale: float):
-        """Views, codes and likelihoods of the particles followed by the probes:
+    def _observe(self, frame, prepared, probe_planes, particles, probe_states, plane_scale: float, response=None):
+        """Views, codes and likelihoods of the particles followed by the probes
+        (``response``: the correlation filter's, :meth:`_response`):
         ``(Observation, views_of)``, ``views_of(i)`` the K views ``(d_k,)``
         float32 of candidate i (a deferred view zero where it was not computed)."""
         cfg = self.config
@@ -647,7 +672,7 @@ class Tracker:
         now = cfg.views[: self._n_first]
         X = self._extract(patches, now)
         with self._timed("likelihood"):
-            offset = self._offsets(frame, X, prepared, probe_planes, particles, probe_states, plane_scale)
+            offset = self._offsets(X, prepared, probe_planes, particles, probe_states, plane_scale, response)
         # A candidate mostly outside the image is not a valid observation.
         with self._timed("motion"):
             valid = inside_fraction(states, work_shape) >= 0.5
@@ -671,7 +696,7 @@ class Tracker:
         )
         return obs, later.views_of
 
-    def _offsets(self, frame, X, prepared, probe_planes, particles, probe_states, plane_scale: float):
+    def _offsets(self, X, prepared, probe_planes, particles, probe_states, plane_scale: float, response=None):
         """Each candidate's terms added to its residual (background, anchor,
         motion, foreground, correlation; ``(n + m,)``), or None when all are off."""
         cfg = self.config
@@ -697,19 +722,18 @@ class Tracker:
                 contrast = np.concatenate([contrast, self._contrast(probe_planes, probe_states, plane_scale)])
             fg = cfg.foreground_weight * (1.0 - contrast)
             offset = fg if offset is None else offset + fg
-        if self._filter is not None:
-            corr = self._correlation(frame, np.concatenate([particles, probe_states]))
+        if response is not None and cfg.correlation_weight:
+            corr = self._correlation(response, np.concatenate([particles, probe_states]))
             offset = corr if offset is None else offset + corr
         return offset
 
-    def _correlation(self, frame, states: np.ndarray) -> np.ndarray:
+    def _correlation(self, response, states: np.ndarray) -> np.ndarray:
         """The correlation term of each state ``(n, 6)`` (working frame):
-        ``weight * (1 - r_i / r_max)`` (:mod:`smtmvt.correlation`), the filter's
-        window about the last box moved by the velocity term, ``(n,)``."""
-        assert self._filter is not None
-        window_box = self._from_work(affine_to_box(self._predicted()))
+        ``weight * (1 - r_i / r_max)`` (:mod:`smtmvt.correlation`) from the
+        filter's ``response`` (:meth:`_response`), ``(n,)``."""
         centres = box_to_affine(self._from_work(affine_to_box(states)))[:, 4:]
-        return self.config.correlation_weight * (1.0 - self._filter.scores(frame, window_box, centres))
+        r, window = response
+        return self.config.correlation_weight * (1.0 - relative_scores(r, window, centres))
 
     def _predicted(self) -> np.ndarray:
         """This frame's prediction ``(6,)``: the last state, its translation
