@@ -143,7 +143,9 @@ def _check_values(a: np.ndarray, where: str) -> None:
         raise ValueError(f"{where}: unsupported integer dtype {a.dtype} (use uint8 or uint16)")
     if not np.issubdtype(a.dtype, np.floating):
         raise ValueError(f"{where}: unsupported dtype {a.dtype}")
-    if not np.all(np.isfinite(a.astype(np.float32, copy=False))):
+    with np.errstate(over="ignore"):  # a value beyond float32 becomes inf, refused below
+        finite = np.all(np.isfinite(a.astype(np.float32, copy=False)))
+    if not finite:
         raise ValueError(f"{where}: image contains NaN or infinite values")
 
 
