@@ -22,7 +22,6 @@ from .features.tan_triggs import TAN_TRIGGS_REACH, tan_triggs_scales
 __all__ = [
     "PreparedFrame",
     "check_frame",
-    "checked_image",
     "plane_window",
     "prepare_crop",
     "prepare_frame",
@@ -79,7 +78,7 @@ def to_unit_range(frame: np.ndarray, where: str = "frame", crop=None) -> np.ndar
     8- or 16-bit frame is converted there only; a float frame is checked and
     scaled as a whole).
     """
-    a = checked_image(frame, where)
+    a = _checked_image(frame, where)
     if crop is not None:
         x0, y0, x1, y1 = _inside(crop, a.shape, f"{where}: crop", "image")
         if a.dtype in (np.uint8, np.uint16):
@@ -98,7 +97,7 @@ def _inside(window, shape, what: str, of: str) -> tuple[int, int, int, int]:
     return x0, y0, x1, y1
 
 
-def checked_image(frame, where: str) -> np.ndarray:
+def _checked_image(frame, where: str) -> np.ndarray:
     """``frame`` as an (H, W) or (H, W, 3) array (alpha or a single channel
     dropped); any other shape, or a side under 2 pixels, raises ValueError
     naming ``where``."""
@@ -126,10 +125,12 @@ def white_level(a: np.ndarray) -> float:
 
 
 def check_frame(frame, where: str) -> np.ndarray:
-    """``frame`` checked as :func:`to_unit_range` checks it, not converted: the
-    image of :func:`checked_image`; a dtype other than uint8, uint16 or float,
-    or NaN or infinite values (as float32), raise ValueError naming ``where``."""
-    a = checked_image(frame, where)
+    """``frame`` checked as :func:`to_unit_range` checks it, not converted:
+    returned as an (H, W) or (H, W, 3) array (alpha or a single channel
+    dropped); any other shape, a side under 2 pixels, a dtype other than
+    uint8, uint16 or float, or NaN or infinite values (as float32) raise
+    ValueError naming ``where``."""
+    a = _checked_image(frame, where)
     _check_values(a, where)
     return a
 
@@ -227,7 +228,7 @@ def prepare_crop(
     plane_shape``; inside the window its gray and color planes equal the whole
     plane's up to the resize's rounding (exactly, at scale 1).
     """
-    a = checked_image(frame, where)
+    a = _checked_image(frame, where)
     H, W = a.shape[:2]
     sx, sy = float(scale[0]), float(scale[1])
     stats = window if stats is None else stats

@@ -594,7 +594,7 @@ class Tracker:
             self._rng.bit_generator.state = rng_state
             self._frame_index -= 1
             raise
-        obs, views_of = self._observe(frame, prepared, probe_planes, particles, probe_states, plane_scale, response)
+        obs, views_of = self._observe(prepared, probe_planes, particles, probe_states, plane_scale, response)
         result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale)
         if self._filter is not None and detail.best is not None:
             with self._timed("likelihood"):
@@ -636,7 +636,7 @@ class Tracker:
                 # about the peak cell's centre (as the centre of a one-pixel box, to map it to the
                 # working frame as box centres are), half a cell's standard deviation
                 point = box_to_affine(self._to_work(np.array([[*peak_point(r, window), 1.0, 1.0]])))[0, 4:]
-                step = self._to_work(np.array([[*window.step, 0.0, 0.0]]))[0, :2]
+                step = np.asarray(window.step) * self._scale  # frame pixels per window pixel, working frame
                 moved = place(moved, count, point, 0.5 * CELL * step, self._rng)
             # each particle's own prediction (its parent moved by the velocity term) and the
             # random walk's translation std there, for the motion term
@@ -655,7 +655,7 @@ class Tracker:
             probe_planes = self._prepare(frame, where, self._channels, plane_scale, probe_states)
         return prepared, probe_planes
 
-    def _observe(self, frame, prepared, probe_planes, particles, probe_states, plane_scale: float, response=None):
+    def _observe(self, prepared, probe_planes, particles, probe_states, plane_scale: float, response=None):
         """Views, codes and likelihoods of the particles followed by the probes
         (``response``: the correlation filter's, :meth:`_response`):
         ``(Observation, views_of)``, ``views_of(i)`` the K views ``(d_k,)``
