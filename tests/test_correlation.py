@@ -9,6 +9,7 @@ from smtmvt import Tracker, TrackerConfig
 from smtmvt.correlation import (
     CELL,
     CorrelationFilter,
+    apce,
     gaussian_label,
     peak_point,
     respond,
@@ -256,3 +257,62 @@ def test_placed_particles_are_the_last_ones_about_the_peak(demo):
     assert np.abs(placed - peak).max() <= 5 * sd.max()
     assert np.abs(placed.mean(axis=0) - peak).max() <= 1.0 * sd.max()
     assert 0.5 * sd.min() < placed.std(axis=0).min() and placed.std(axis=0).max() < 1.6 * sd.max()
+
+
+def _bump(shape, centre, height, sigma=1.2):
+    v, u = np.mgrid[: shape[0], : shape[1]]
+    return height * np.exp(-0.5 * ((u - centre[0]) ** 2 + (v - centre[1]) ** 2) / sigma**2)
+
+
+def test_apce_is_one_for_flat_and_the_size_for_a_spike():
+    assert apce(np.full((7, 9), 0.3)) == 1.0
+    spike = np.zeros((7, 9))
+    spike[2, 3] = 0.8
+    assert apce(spike) == pytest.approx(63.0)
+    # (max - min)^2 / mean((r - min)^2), by the definition on a random response
+    r = np.random.default_rng(1).normal(size=(11, 13))
+    assert apce(r) == pytest.approx((r.max() - r.min()) ** 2 / np.mean((r - r.min()) ** 2), rel=1e-12)
+    # a sharper peak scores higher; a second peak lowers it
+    narrow, wide = _bump((25, 30), (10, 12), 1.0, 1.0), _bump((25, 30), (10, 12), 1.0, 3.0)
+    assert apce(narrow) > apce(wide) > 1.0
+    assert apce(narrow + _bump((25, 30), (22, 12), 0.9, 1.0)) < 0.6 * apce(narrow)
+
+
+def test_confident_compares_with_the_mean_of_the_responses_before():
+    img, box = _texture(), np.array([140.0, 100.0, 60.0, 40.0])
+    cf = CorrelationFilter(img, box)
+    sharp = _bump((25, 30), (10, 12), 1.0, 1.0)
+    assert cf.confident(sharp, (0.7, 0.45))  # the first: nothing to compare with
+    assert cf.confident(0.8 * sharp, (0.7, 0.45))  # peak 0.8 >= 0.7 x 1.0; the same APCE
+    # peak 0.5 < 0.7 x mean(1.0, 0.8): not confident, however sharp
+    assert not cf.confident(0.5 * sharp, (0.7, 0.45))
+    # a peak as high but spread with a second one: the APCE falls below 0.45 of the mean
+    blurred = _bump((25, 30), (10, 12), 1.0, 4.0) + _bump((25, 30), (22, 5), 0.95, 4.0)
+    assert apce(blurred) < 0.45 * apce(sharp)
+    assert not cf.confident(blurred, (0.7, 0.45))
+    assert cf.confident(blurred, (0.7, 0.0))
+    assert len(cf.history) == 5 and cf.history[0] == (1.0, apce(sharp))
+
+
+def test_the_filter_learns_only_from_confident_frames(demo):
+    frames, box = demo.frames, demo.groundtruth[0]
+
+    def models(gate):
+        t = Tracker(TrackerConfig(n_particles=60, seed=0, correlation_learn_gate=gate))
+        t.init(frames[0], box)
+        out = []
+        for f in frames[1:4]:
+            t.update(f)
+            out.append(t._filter.model.A.copy())
+        return out, t._filter.history
+
+    always, none_kept = models((0.0, 0.0))
+    assert none_kept == [] and not np.array_equal(always[1], always[2])
+    # a gate no response passes (a peak 10 times the mean): the filter learns from frame 1 only
+    never, history = models((10.0, 10.0))
+    assert len(history) == 3
+    np.testing.assert_array_equal(never[0], always[0])
+    np.testing.assert_array_equal(never[2], never[0])
+    with pytest.raises(ValueError, match="correlation_learn_gate"):
+        TrackerConfig(correlation_learn_gate=(0.7,))
+    assert TrackerConfig.paper().correlation_learn_gate == (0.0, 0.0)

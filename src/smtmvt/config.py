@@ -1030,6 +1030,14 @@ class TrackerConfig:
         ``correlation_weight`` is above 0. Default 0, the paper's random walk:
         0.1 gave the same mean over 18 seeds, gaining on sequences without a
         look-alike and losing where the filter's peak jumps to one (note [33]).
+    correlation_learn_gate : (float, float), each >= 0
+        ``(b1, b2)``: the correlation filter learns from a frame's chosen box
+        only when that frame's response (over the window about the
+        prediction) is confident, its peak at least ``b1`` times and its
+        average peak-to-correlation energy at least ``b2`` times their means
+        over the frames before (LMCF's criterion, Wang et al., CVPR 2017, with
+        its values; :meth:`smtmvt.correlation.CorrelationFilter.confident`).
+        Default ``(0, 0)``: it learns from every frame.
     motion_weight : float >= 0
         Weight ``w`` of the motion term: each particle's residual in the
         likelihood gains ``w d_i / (2 alpha)``, ``d_i`` the squared length of
@@ -1265,6 +1273,7 @@ class TrackerConfig:
     foreground_weight: float = 1.0
     correlation_weight: float = 0.5
     correlation_particles: float = 0.0
+    correlation_learn_gate: tuple[float, float] = (0.0, 0.0)
     motion_weight: float = 1.0
     term_views: tuple = ("intensity", "color", "hog")
     feature_size: tuple = (32, 32)
@@ -1333,6 +1342,8 @@ class TrackerConfig:
             "foreground_weight": self.foreground_weight >= 0,
             "correlation_weight": self.correlation_weight >= 0,
             "correlation_particles": 0 <= self.correlation_particles <= 1,
+            "correlation_learn_gate": len(self.correlation_learn_gate) == 2
+            and all(0 <= g for g in self.correlation_learn_gate),
             "motion_weight": self.motion_weight >= 0,
             "estimate": self.estimate in ("best", "mean"),
             "fixed_templates": 1 <= int(self.fixed_templates) <= int(self.n_templates),
@@ -1352,6 +1363,7 @@ class TrackerConfig:
         object.__setattr__(self, "views", tuple(self.views))
         object.__setattr__(self, "deferred_views", tuple(self.deferred_views))
         object.__setattr__(self, "affine_std", tuple(float(s) for s in self.affine_std))
+        object.__setattr__(self, "correlation_learn_gate", tuple(float(g) for g in self.correlation_learn_gate))
         object.__setattr__(self, "feature_size", tuple(int(s) for s in self.feature_size))
         if self.color_size is not None:
             object.__setattr__(self, "color_size", tuple(int(s) for s in self.color_size))
@@ -1405,6 +1417,7 @@ class TrackerConfig:
             foreground_weight=0.0,
             correlation_weight=0.0,
             correlation_particles=0.0,
+            correlation_learn_gate=(0.0, 0.0),
             motion_weight=0.0,
             term_views=("intensity", "color", "hog"),
             feature_size=(32, 32),

@@ -28,7 +28,10 @@ known before coding, so bounded coding stays exact
 The tracker also places a fraction of each frame's particles about the
 response's peak (:func:`peak_point`; ``TrackerConfig.correlation_particles``),
 so that the search reaches where the filter sees the target even when the
-random walk does not.
+random walk does not; and it may let the filter learn only from frames whose
+response is confident (:meth:`CorrelationFilter.confident`, LMCF's peak and
+:func:`apce` test; ``TrackerConfig.correlation_learn_gate``), so that an
+occluder or a look-alike that took the box does not enter the filter.
 
 It helps where the target's look drifts from the templates or a similar
 object crosses it (Walking2, Bolt, Basketball, Freeman1), and costs where
@@ -66,6 +69,7 @@ __all__ = [
     "sample",
     "relative_scores",
     "peak_point",
+    "apce",
     "CorrelationFilter",
 ]
 
@@ -284,6 +288,19 @@ def peak_point(response: np.ndarray, window: Window) -> np.ndarray:
     return window.points([(u, v)])[0]
 
 
+def apce(response: np.ndarray) -> float:
+    """Average peak-to-correlation energy of ``response`` ``(h, w)`` (LMCF,
+    Wang et al., CVPR 2017): ``(r_max - r_min)^2 / mean((r - r_min)^2)``, a
+    float >= 1 (1 for a flat response, ``h w`` for a single spike). High where
+    the response is one sharp peak; falls where it spreads or has several."""
+    r = np.asarray(response, dtype=np.float64)
+    lo = float(r.min())
+    energy = float(np.mean((r - lo) ** 2))
+    if not energy > 0:
+        return 1.0
+    return (float(r.max()) - lo) ** 2 / energy
+
+
 class CorrelationFilter:
     """The filter of one tracked target: trained on the first box, scored at
     candidates' centres, updated from each chosen box at ``LEARNING_RATE``.
@@ -298,6 +315,20 @@ class CorrelationFilter:
         h, w = self.size[0] // CELL, self.size[1] // CELL
         self._label = gaussian_label((h, w), BOX_PIXELS / CELL)
         self.model = train(self._features(frame, b), self._label)
+        #: (peak, APCE) of each response judged by :meth:`confident`
+        self.history: list[tuple[float, float]] = []
+        self._history_sum = np.zeros(2)
+
+    def confident(self, response: np.ndarray, gate: tuple[float, float]) -> bool:
+        """Whether ``response`` is confident enough to learn from (LMCF's
+        criterion): its peak at least ``gate[0]`` times, and its :func:`apce` at
+        least ``gate[1]`` times, their means over the responses judged before
+        (always on the first). Records the response's in :attr:`history`."""
+        now = (float(np.max(response)), apce(response))
+        past = self._history_sum / len(self.history) if self.history else None
+        self.history.append(now)
+        self._history_sum += now
+        return past is None or (now[0] >= gate[0] * past[0] and now[1] >= gate[1] * past[1])
 
     def _window(self, box) -> Window:
         """The window about ``box`` (its centre, its size)."""

@@ -596,7 +596,7 @@ class Tracker:
             raise
         obs, views_of = self._observe(prepared, probe_planes, particles, probe_states, plane_scale, response)
         result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale)
-        if self._filter is not None and detail.best is not None:
+        if self._filter is not None and detail.best is not None and self._learns(response):
             with self._timed("likelihood"):
                 self._filter.update(frame, self._from_work(self._work_box))
         return result, detail
@@ -611,6 +611,16 @@ class Tracker:
         check_frame(frame, f"frame {self._frame_index}")
         with self._timed("likelihood"):
             return self._filter.response(frame, self._from_work(affine_to_box(self._predicted())))
+
+    def _learns(self, response) -> bool:
+        """Whether the filter learns from this frame's box: always, or with
+        ``config.correlation_learn_gate`` only when this frame's ``response``
+        is confident (:meth:`CorrelationFilter.confident`)."""
+        gate = self.config.correlation_learn_gate
+        if response is None or not any(gate):
+            return True
+        assert self._filter is not None
+        return self._filter.confident(response[0], gate)
 
     def _propagate(self, response=None) -> np.ndarray:
         """This frame's ``(n, 6)`` particles: the last frame's resampled by their
