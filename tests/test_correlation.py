@@ -145,7 +145,8 @@ def test_config_checks_the_weight_and_the_paper_has_none():
     for bad in (-0.1, 1.5):
         with pytest.raises(ValueError, match="correlation_particles"):
             TrackerConfig(correlation_particles=bad)
-    assert TrackerConfig().correlation_particles == 0.0  # the default (config note [33])
+    assert TrackerConfig().correlation_particles == 0.1  # the default (config note [34])
+    assert TrackerConfig().correlation_learn_gate == (0.7, 0.45)
     assert TrackerConfig.paper().correlation_particles == 0.0
     # the filter is learned for either use
     img, box = _texture(), np.array([140.0, 100.0, 60.0, 40.0])
