@@ -323,7 +323,8 @@ class CorrelationFilter:
         """Whether ``response`` is confident enough to learn from (LMCF's
         criterion): its peak at least ``gate[0]`` times, and its :func:`apce` at
         least ``gate[1]`` times, their means over the responses judged before
-        (always on the first). Records the response's in :attr:`history`."""
+        (always on the first). Records the response's peak and APCE in
+        :attr:`history`."""
         now = (float(np.max(response)), apce(response))
         past = self._history_sum / len(self.history) if self.history else None
         self.history.append(now)
