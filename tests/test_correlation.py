@@ -260,7 +260,7 @@ def test_placed_particles_are_the_last_ones_about_the_peak(demo):
     assert 0.5 * sd.min() < placed.std(axis=0).min() and placed.std(axis=0).max() < 1.6 * sd.max()
 
 
-def _bump(shape, centre, height, sigma=1.2):
+def _bump(shape, centre, height, sigma):
     v, u = np.mgrid[: shape[0], : shape[1]]
     return height * np.exp(-0.5 * ((u - centre[0]) ** 2 + (v - centre[1]) ** 2) / sigma**2)
 
