@@ -317,3 +317,22 @@ def test_the_filter_learns_only_from_confident_frames(demo):
     with pytest.raises(ValueError, match="correlation_learn_gate"):
         TrackerConfig(correlation_learn_gate=(0.7,))
     assert TrackerConfig.paper().correlation_learn_gate == (0.0, 0.0)
+
+
+@pytest.mark.parametrize("rate", [0.02, 0.3])
+def test_the_tracker_blends_its_filter_at_the_configured_rate(demo, rate):
+    frames, box = demo.frames, demo.groundtruth[0]
+    t = Tracker(TrackerConfig(n_particles=60, seed=0, correlation_rate=rate))
+    t.init(frames[0], box)
+    first = t._filter.model
+    t.update(frames[1])  # the first frame judged is always confident: the filter learns
+    chosen = t._from_work(t._work_box)  # the state's box (t.box is reshaped for the report)
+    new = train(t._filter._features(frames[1], chosen), t._filter._label)
+    np.testing.assert_allclose(t._filter.model.A, (1 - rate) * first.A + rate * new.A, rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(t._filter.model.B, (1 - rate) * first.B + rate * new.B, rtol=1e-9)
+
+
+@pytest.mark.parametrize("rate", [0.0, -0.1, 1.5])
+def test_config_refuses_a_rate_outside_zero_to_one(rate):
+    with pytest.raises(ValueError, match="correlation_rate"):
+        TrackerConfig(correlation_rate=rate)

@@ -598,7 +598,7 @@ class Tracker:
         result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale)
         if self._filter is not None and detail.best is not None and self._learns(response):
             with self._timed("likelihood"):
-                self._filter.update(frame, self._from_work(self._work_box))
+                self._filter.update(frame, self._from_work(self._work_box), self.config.correlation_rate)
         return result, detail
 
     def _response(self, frame) -> tuple | None:
