@@ -1083,8 +1083,9 @@ class TrackerConfig:
     correlation_weight : float >= 0
         Weight ``rho`` of the correlation term (:mod:`smtmvt.correlation`): a
         correlation filter over a window about the predicted box, learned from
-        the first box and updated from each chosen box (rate 0.02), scores
-        each candidate by its response ``r_i`` at the candidate's centre, and
+        the first box and updated from the chosen boxes (at
+        ``correlation_rate``, on the frames ``correlation_learn_gate``
+        passes), scores each candidate by its response ``r_i`` at the candidate's centre, and
         its residual in the likelihood gains ``rho (1 - r_i / r_max)``
         (``r_max`` the response's peak over the window). Default 0.5
         (measured in the table above, note [32]); 0: the paper's likelihood.
