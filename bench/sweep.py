@@ -5,6 +5,7 @@ Usage::
     python bench/sweep.py run --tag T [--config JSON] [--seeds 3 | 3-8 | 0,4] [--workers 2]
                           [--data DIR ...] [--out RUNS] [--sequences A,B]
     python bench/sweep.py show TAG [TAG ...] [--out RUNS] [--seeds K | a-b | i,j]
+    python bench/sweep.py errors TAG [--out RUNS] [--seeds ...] [--data DIR ...]
 
 ``run`` tracks every sequence of every ``--data`` folder (default
 ``../shared/data/otb`` and ``/work/extra``, the 18 sequences the accuracy issue
@@ -24,6 +25,14 @@ the mean per seed index, and the means over all sequences and per data folder.
 Compare tags on the same seeds, and not only on the seeds a default was
 chosen on: those favour it (the default's seeds 0-2 average 0.626, its seeds
 0-8 0.594), so any change that reshuffles the outcomes looks worse there.
+``errors`` splits a tag's error per sequence into size and position
+(:func:`error_split`): the average overlap as scored, and as it would be with
+the true box's size at the tracker's centre, and with the tracker's size at
+the true centre; the median log ratio of the box's area to the truth's, and
+the median offset of its centre in the truth's widths and heights. Where
+"true size" gains much and "true centre" little, the box is on the target at
+the wrong size (stop 31: Basketball, Girl); the other way round, it is lost
+or offset (Bolt, Football).
 Not a test: it measures.
 """
 
@@ -171,6 +180,69 @@ def show(args) -> None:
         )
 
 
+def error_split(boxes, gt) -> dict:
+    """Where one run's overlap is lost: its size or its position.
+
+    ``boxes``, ``gt`` : ``(n, 4)`` ``(x, y, w, h)`` boxes, same origin. The
+    boxes are prepared and the frames chosen as
+    :func:`smtmvt.evaluation.metrics.score_sequence` does (frame 1 the truth,
+    failed boxes repaired, frames with invalid truth left out). Returns
+    ``ao`` (the scored average overlap), ``ao_true_size`` (each box given the
+    truth's width and height about its own centre), ``ao_true_centre`` (each
+    box moved to the truth's centre), ``log_area`` (median of ``log(w h / (w_gt
+    h_gt))``) and ``dx``, ``dy`` (median offset of the box's centre from the
+    truth's, in the truth's width and height).
+    """
+    import numpy as np
+
+    from smtmvt.evaluation.metrics import overlap_ratio, repair_predictions, valid_groundtruth
+
+    g = np.asarray(gt, dtype=np.float64)
+    b = np.asarray(boxes, dtype=np.float64).copy()
+    b[0] = g[0]
+    b = repair_predictions(b, g)
+    keep = valid_groundtruth(g)
+    b, g = b[keep], g[keep]
+    cb, cg = b[:, :2] + b[:, 2:] / 2, g[:, :2] + g[:, 2:] / 2
+    true_size = np.concatenate([cb - g[:, 2:] / 2, g[:, 2:]], axis=1)
+    true_centre = np.concatenate([cg - b[:, 2:] / 2, b[:, 2:]], axis=1)
+
+    def mean_overlap(x):
+        return float(np.mean(np.nan_to_num(overlap_ratio(x, g), nan=0.0)))
+
+    with np.errstate(invalid="ignore", divide="ignore"):
+        log_area = np.log(b[:, 2] * b[:, 3] / (g[:, 2] * g[:, 3]))
+    return {
+        "ao": mean_overlap(b),
+        "ao_true_size": mean_overlap(true_size),
+        "ao_true_centre": mean_overlap(true_centre),
+        "log_area": float(np.nanmedian(log_area)),
+        "dx": float(np.nanmedian((cb[:, 0] - cg[:, 0]) / g[:, 2])),
+        "dy": float(np.nanmedian((cb[:, 1] - cg[:, 1]) / g[:, 3])),
+    }
+
+
+def errors(args) -> None:
+    """Print :func:`error_split` per sequence, the mean over the tag's seeds, and over all."""
+    from smtmvt import open_sequence
+
+    paths = {name: path for _, name, path in _sequences(args.data, None)}
+    recs = _load(Path(args.out) / args.tag, args.seeds)
+    keys = ["ao", "ao_true_size", "ao_true_centre", "log_area", "dx", "dy"]
+    print(f"{'sequence':<12}{'ao':>8}{'true size':>11}{'true ctr':>10}{'log area':>10}{'dx/w':>8}{'dy/h':>8}")
+    rows = []
+    for s in sorted({q for q, _ in recs}, key=str.lower):
+        if s not in paths:
+            sys.exit(f"sweep: no data folder holds {s} (--data {' '.join(args.data)})")
+        gt = open_sequence(paths[s]).groundtruth
+        splits = [error_split(r["boxes"], gt) for (q, _), r in recs.items() if q == s]
+        row = [_mean(d[k] for d in splits) for k in keys]
+        rows.append(row)
+        print(f"{s:<12}{row[0]:>8.3f}{row[1]:>11.3f}{row[2]:>10.3f}{row[3]:>+10.2f}{row[4]:>+8.3f}{row[5]:>+8.3f}")
+    means = [_mean(r[i] for r in rows) for i in range(3)]
+    print(f"{args.tag}: mean {means[0]:.3f}, with the true size {means[1]:.3f}, at the true centre {means[2]:.3f}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="cmd", required=True)
@@ -186,8 +258,13 @@ def main() -> None:
     s.add_argument("tags", nargs="+")
     s.add_argument("--out", default=DEFAULT_OUT)
     s.add_argument("--seeds", default=None, help="as for run (default: every seed run)")
+    e = sub.add_parser("errors")
+    e.add_argument("tag")
+    e.add_argument("--out", default=DEFAULT_OUT)
+    e.add_argument("--seeds", default=None, help="as for run (default: every seed run)")
+    e.add_argument("--data", nargs="+", default=DEFAULT_DATA)
     args = ap.parse_args()
-    run(args) if args.cmd == "run" else show(args)
+    {"run": run, "show": show, "errors": errors}[args.cmd](args)
 
 
 if __name__ == "__main__":
