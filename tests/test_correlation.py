@@ -20,6 +20,7 @@ from smtmvt.correlation import (
     window_shape,
 )
 from smtmvt.demo import make_demo_sequence
+from smtmvt.geometry import affine_to_box
 
 
 def _texture(h=240, w=320, seed=0):
@@ -336,3 +337,37 @@ def test_the_tracker_blends_its_filter_at_the_configured_rate(demo, rate):
 def test_config_refuses_a_rate_outside_zero_to_one(rate):
     with pytest.raises(ValueError, match="correlation_rate"):
         TrackerConfig(correlation_rate=rate)
+
+
+def test_the_first_boxs_filter_answers_unchanged_after_updates():
+    img, box = _texture(), np.array([140.0, 100.0, 60.0, 40.0])
+    cf = CorrelationFilter(img, box)
+    for k in range(1, 4):  # updated at a high rate on another texture: the model moves far
+        cf.update(_texture(seed=k), box, rate=0.5)
+    probe = _shifted(img, 4, 2)
+    fresh, _ = CorrelationFilter(img, box).response(probe, box)
+    learned, _ = cf.response(probe, box)
+    first, _ = cf.response(probe, box, first=1.0)
+    mixed, _ = cf.response(probe, box, first=0.3)
+    np.testing.assert_allclose(first, fresh, rtol=1e-12, atol=1e-12)
+    assert np.abs(learned - fresh).max() > 0.1 * np.abs(fresh).max()
+    np.testing.assert_allclose(mixed, 0.7 * learned + 0.3 * fresh, rtol=1e-12, atol=1e-12)
+
+
+def test_the_tracker_mixes_the_first_filter_at_the_configured_share(demo):
+    frames, box = demo.frames, demo.groundtruth[0]
+    t = Tracker(TrackerConfig(n_particles=60, seed=0, correlation_first=0.4, correlation_rate=0.5))
+    t.init(frames[0], box)
+    for f in frames[1:4]:
+        t.update(f)
+    r, window = t._response(frames[4])
+    predicted = t._from_work(affine_to_box(t._predicted()))
+    fresh, _ = CorrelationFilter(frames[0], np.asarray(box, dtype=np.float64)).response(frames[4], predicted)
+    learned, _ = t._filter.response(frames[4], predicted)
+    np.testing.assert_allclose(r, 0.6 * learned + 0.4 * fresh, rtol=1e-9, atol=1e-12)
+
+
+@pytest.mark.parametrize("share", [-0.1, 1.5])
+def test_config_refuses_a_first_share_outside_zero_to_one(share):
+    with pytest.raises(ValueError, match="correlation_first"):
+        TrackerConfig(correlation_first=share)

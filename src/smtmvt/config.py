@@ -1118,6 +1118,14 @@ class TrackerConfig:
         a chosen box (:meth:`smtmvt.correlation.CorrelationFilter.update`):
         the model becomes ``(1 - rate) model + rate new``. Default 0.02
         (KCF's); 0.04 and 0.01 measured worse on the mean (note [35]).
+    correlation_first : float in [0, 1]
+        Share of the first box's filter in the correlation filter's
+        response: the response (its term, the peak where particles are
+        placed, the learn gate's test) is ``1 - first`` times the learned
+        model's plus ``first`` times that of the filter trained on the first
+        box and never updated (:meth:`smtmvt.correlation.CorrelationFilter.response`),
+        as the anchor term keeps the first template in the likelihood. 0:
+        the learned model alone, the default (0.3 measured, note [36]).
     motion_weight : float >= 0
         Weight ``w`` of the motion term: each particle's residual in the
         likelihood gains ``w d_i / (2 alpha)``, ``d_i`` the squared length of
@@ -1355,6 +1363,7 @@ class TrackerConfig:
     correlation_particles: float = 0.1
     correlation_learn_gate: tuple[float, float] = (0.7, 0.45)
     correlation_rate: float = 0.02
+    correlation_first: float = 0.0
     motion_weight: float = 1.0
     term_views: tuple = ("intensity", "color", "hog")
     feature_size: tuple = (32, 32)
@@ -1426,6 +1435,7 @@ class TrackerConfig:
             "correlation_learn_gate": len(self.correlation_learn_gate) == 2
             and all(0 <= g for g in self.correlation_learn_gate),
             "correlation_rate": 0 < self.correlation_rate <= 1,
+            "correlation_first": 0 <= self.correlation_first <= 1,
             "motion_weight": self.motion_weight >= 0,
             "estimate": self.estimate in ("best", "mean"),
             "fixed_templates": 1 <= int(self.fixed_templates) <= int(self.n_templates),

@@ -33,6 +33,11 @@ response is confident (:meth:`CorrelationFilter.confident`, LMCF's peak and
 :func:`apce` test; ``TrackerConfig.correlation_learn_gate``), so that an
 occluder or a look-alike that took the box does not enter the filter.
 
+The response may also mix in, at a fixed share, the response of the filter
+trained on the first box and never updated
+(``TrackerConfig.correlation_first``), as the anchor term keeps the first
+template in the likelihood.
+
 It helps where the target's look drifts from the templates or a similar
 object crosses it (Walking2, Bolt, Basketball, Freeman1), and costs where
 the filter, trained on the tracker's own choices, follows a box that slid
@@ -315,6 +320,8 @@ class CorrelationFilter:
         h, w = self.size[0] // CELL, self.size[1] // CELL
         self._label = gaussian_label((h, w), BOX_PIXELS / CELL)
         self.model = train(self._features(frame, b), self._label)
+        #: the filter of the first box, never updated (:meth:`response`'s ``first``)
+        self.first = self.model
         #: (peak, APCE) of each response judged by :meth:`confident`
         self.history: list[tuple[float, float]] = []
         self._history_sum = np.zeros(2)
@@ -339,10 +346,19 @@ class CorrelationFilter:
     def _features(self, frame: np.ndarray, box) -> np.ndarray:
         return window_features(frame, self._window(box))
 
-    def response(self, frame: np.ndarray, box) -> tuple[np.ndarray, Window]:
-        """The response ``(h, w)`` over the window about ``box`` in ``frame``, and the window."""
+    def response(self, frame: np.ndarray, box, first: float = 0.0) -> tuple[np.ndarray, Window]:
+        """The response ``(h, w)`` over the window about ``box`` in ``frame``, and the window.
+
+        ``first`` in [0, 1]: the response is ``(1 - first)`` times the model's
+        plus ``first`` times that of the first box's filter (:attr:`first`,
+        which no update changes), on the same window's features.
+        """
         window = self._window(box)
-        return respond(self.model, window_features(frame, window)), window
+        features = window_features(frame, window)
+        r = respond(self.model, features)
+        if first:
+            r = (1.0 - first) * r + first * respond(self.first, features)
+        return r, window
 
     def scores(self, frame: np.ndarray, box, centres) -> np.ndarray:
         """``r_i / r_max`` clipped to [0, 1] for each centre ``(n, 2)`` ``(x, y)``

@@ -610,7 +610,8 @@ class Tracker:
             return None
         check_frame(frame, f"frame {self._frame_index}")
         with self._timed("likelihood"):
-            return self._filter.response(frame, self._from_work(affine_to_box(self._predicted())))
+            box = self._from_work(affine_to_box(self._predicted()))
+            return self._filter.response(frame, box, self.config.correlation_first)
 
     def _learns(self, response) -> bool:
         """Whether the filter learns from this frame's box: always, or with
