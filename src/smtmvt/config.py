@@ -117,6 +117,7 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
                             with the foreground term
                               at the last size        seeds 0-5: 0.666 against 0.694 [36]
                             with color in the filter  seeds 0-5: 0.676 against 0.694 [36]
+                            with the gate's median    seeds 0-5: 0.665 against 0.694 [36]
                         with the filter learning from
                           confident frames alone      seeds 0-5: 0.651 against 0.675 [34]
                 with antialias 1.5                    0.623 over 9 seeds against 0.621 [24]
@@ -962,7 +963,12 @@ feeds the drift. Two opponent-color channels in the filter (cell means of
 ``(R - G) / 2`` and ``(R + G - 2B) / 4``; ``cfc1``): 0.676 against 0.694
 (Basketball +0.04, David +0.03; Bolt 0.64 -> 0.48, Singer2 0.75 -> 0.62,
 the singer's colorful screen; CarDark 0.74 -> 0.69; gray sequences
-unchanged). The outcomes are bimodal per seed (Bolt 0.65 or 0.04, Subway
+unchanged). The learn gate against the median of the past responses'
+peaks and APCEs instead of their mean (the mean holds the first frames'
+high peaks, and on Bolt refuses learning for ~30 frames after the runner
+rises; ``gmed``): 0.665 against 0.694 (Subway 0.66 -> 0.41, Bolt 0.64 ->
+0.46, Basketball 0.60 -> 0.50): the stricter reference is what keeps the
+look-alikes out. The outcomes are bimodal per seed (Bolt 0.65 or 0.04, Subway
 0.65 or 0.17, CarDark 0.61 or 0.80, Car4 0.6 or 0.87), so a sequence's
 six-seed mean moves by 0.05-0.1 when one seed changes mode.
 """
