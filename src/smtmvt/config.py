@@ -944,7 +944,8 @@ response mixed with that of the first box's filter, never updated
 all 18 seeds 0.684 against 0.685 (otb 0.712 against 0.708): Walking2
 0.74 -> 0.78, Basketball 0.58 -> 0.62, Subway, Girl, Singer2, Soccer
 +0.02-0.03; Bolt 0.62 -> 0.54, CarDark 0.73 -> 0.67, Shaking -0.02; kept
-as an option at 0. A larger scale step of the random walk (``aspect_std``
+as an option at 0. At 0.5 (``cfx5``), seeds 0-5: 0.679 against 0.694
+(Singer2 0.75 -> 0.65, CarDark 0.74 -> 0.63, Bolt 0.64 -> 0.53). A larger scale step of the random walk (``aspect_std``
 0.01414 with the scale std 0.01: the aspect moves as before, the log scale
 1.41 times as far; ``asp14``): 0.676 against 0.694 (Car4 0.79 -> 0.86,
 David 0.69 -> 0.74, Freeman1 +0.03, Soccer +0.03; Subway 0.66 -> 0.49,
@@ -1168,7 +1169,7 @@ class TrackerConfig:
         box and never updated (:meth:`smtmvt.correlation.CorrelationFilter.response`),
         as the anchor term keeps the first template in the likelihood. 0:
         the learned model alone, the default (0.3 measured the same over 18
-        seeds, note [36]).
+        seeds, 0.5 lower; note [36]).
     motion_weight : float >= 0
         Weight ``w`` of the motion term: each particle's residual in the
         likelihood gains ``w d_i / (2 alpha)``, ``d_i`` the squared length of
