@@ -360,7 +360,7 @@ def test_the_tracker_mixes_the_first_filter_at_the_configured_share(demo):
     t.init(frames[0], box)
     for f in frames[1:4]:
         t.update(f)
-    r, window = t._response(frames[4])
+    r, _ = t._response(frames[4])
     predicted = t._from_work(affine_to_box(t._predicted()))
     fresh, _ = CorrelationFilter(frames[0], np.asarray(box, dtype=np.float64)).response(frames[4], predicted)
     learned, _ = t._filter.response(frames[4], predicted)

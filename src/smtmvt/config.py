@@ -945,9 +945,10 @@ all 18 seeds 0.684 against 0.685 (otb 0.712 against 0.708): Walking2
 0.74 -> 0.78, Basketball 0.58 -> 0.62, Subway, Girl, Singer2, Soccer
 +0.02-0.03; Bolt 0.62 -> 0.54, CarDark 0.73 -> 0.67, Shaking -0.02; kept
 as an option at 0. At 0.5 (``cfx5``), seeds 0-5: 0.679 against 0.694
-(Singer2 0.75 -> 0.65, CarDark 0.74 -> 0.63, Bolt 0.64 -> 0.53). A larger scale step of the random walk (``aspect_std``
-0.01414 with the scale std 0.01: the aspect moves as before, the log scale
-1.41 times as far; ``asp14``): 0.676 against 0.694 (Car4 0.79 -> 0.86,
+(Singer2 0.75 -> 0.65, CarDark 0.74 -> 0.63, Bolt 0.64 -> 0.53). A larger
+scale step of the random walk (``aspect_std`` 0.01414 with the scale std
+0.01: the aspect moves as before, the log scale 1.41 times as far;
+``asp14``): 0.676 against 0.694 (Car4 0.79 -> 0.86,
 David 0.69 -> 0.74, Freeman1 +0.03, Soccer +0.03; Subway 0.66 -> 0.49,
 CarDark 0.74 -> 0.63, Bolt 0.64 -> 0.57, Girl 0.69 -> 0.64, Football
 -0.04). The foreground contrast of each candidate taken at its centre
@@ -969,9 +970,9 @@ peaks and APCEs instead of their mean (the mean holds the first frames'
 high peaks, and on Bolt refuses learning for ~30 frames after the runner
 rises; ``gmed``): 0.665 against 0.694 (Subway 0.66 -> 0.41, Bolt 0.64 ->
 0.46, Basketball 0.60 -> 0.50): the stricter reference is what keeps the
-look-alikes out. The outcomes are bimodal per seed (Bolt 0.65 or 0.04, Subway
-0.65 or 0.17, CarDark 0.61 or 0.80, Car4 0.6 or 0.87), so a sequence's
-six-seed mean moves by 0.05-0.1 when one seed changes mode.
+look-alikes out. The outcomes are bimodal per seed (Bolt 0.65 or 0.04,
+Subway 0.65 or 0.17, CarDark 0.61 or 0.80, Car4 0.6 or 0.87), so a
+sequence's six-seed mean moves by 0.05-0.1 when one seed changes mode.
 """
 
 from __future__ import annotations
@@ -1128,9 +1129,10 @@ class TrackerConfig:
         correlation filter over a window about the predicted box, learned from
         the first box and updated from the chosen boxes (at
         ``correlation_rate``, on the frames ``correlation_learn_gate``
-        passes), scores each candidate by its response ``r_i`` at the candidate's centre, and
-        its residual in the likelihood gains ``rho (1 - r_i / r_max)``
-        (``r_max`` the response's peak over the window). Default 0.5
+        passes), scores each candidate by its response ``r_i`` at the
+        candidate's centre, and its residual in the likelihood gains
+        ``rho (1 - r_i / r_max)`` (``r_max`` the response's peak over the
+        window). Default 0.5
         (measured in the table above, note [32]); 0: the paper's likelihood.
     correlation_particles : float in [0, 1]
         Fraction of the particles placed, each frame, about the peak of the
