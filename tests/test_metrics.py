@@ -19,6 +19,7 @@ from smtmvt.evaluation.metrics import (
     center_error,
     overlap_ratio,
     precision_curve,
+    prepare_predictions,
     repair_predictions,
     score_sequence,
     success_curve,
@@ -267,6 +268,30 @@ def test_no_repair_where_the_groundtruth_has_nan():
     s = score_sequence(pred, gt)
     np.testing.assert_array_equal(s.overlaps[2:4], [-1, 0])  # invalid gt; NaN box = failure
     assert s.errors[3] == np.inf
+
+
+def test_prepare_predictions_is_what_score_sequence_scores():
+    """Frame 1 := truth, the repair, the valid mask; the inputs untouched; the scored
+    overlap is the mean over the mask of the prepared boxes' overlaps."""
+    rng = np.random.default_rng(11)
+    gt = random_boxes(rng, 30)
+    gt[[4, 9], 2] = 0.0  # unscored frames ("otb")
+    pred = perturb(rng, gt)
+    pred[[0, 6, 7]] = np.nan
+    before = pred.copy()
+    b, g, valid = prepare_predictions(pred, gt)
+    np.testing.assert_array_equal(pred, before)  # a new array
+    np.testing.assert_array_equal(b[0], gt[0])
+    np.testing.assert_array_equal(b[6], pred[5])
+    np.testing.assert_array_equal(b[7], pred[5])
+    np.testing.assert_array_equal(valid, valid_groundtruth(gt))
+    assert valid.sum() == 28
+    s = score_sequence(pred, gt)
+    assert s.avg_overlap == pytest.approx(float(np.mean(overlap_ratio(b, g)[valid])))
+    kept, _, _ = prepare_predictions(pred, gt, replace_first=False)
+    assert np.isnan(kept[0]).all()
+    with pytest.raises(ValueError, match="prediction has 29 boxes but the ground truth has 30"):
+        prepare_predictions(pred[1:], gt)
 
 
 def test_repair_equals_matlab_loop_on_random_sequences():

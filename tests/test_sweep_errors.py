@@ -1,4 +1,5 @@
-"""bench/sweep.py's error split: the scored overlap, and the overlap with the true size or centre."""
+"""bench/sweep.py's error split (the scored overlap, and the overlap with the true size or centre)
+and its filter of complete sequences."""
 
 import importlib.util
 from pathlib import Path
@@ -55,3 +56,16 @@ def test_a_shifted_box_of_the_true_size_loses_only_to_position(gt):
     assert split["log_area"] == pytest.approx(0.0, abs=1e-12)
     assert split["dx"] == pytest.approx(0.25)
     assert split["dy"] == pytest.approx(-0.5)
+
+
+def test_complete_only_keeps_sequences_every_tag_finished_on_every_seed():
+    runs = {
+        "a": {("Bolt", 0): 1, ("Bolt", 1): 2, ("Girl", 0): 3, ("Girl", 1): 4, ("Dog1", 0): 5},
+        "b": {("Bolt", 0): 6, ("Bolt", 1): 7, ("Girl", 0): 8},
+    }
+    kept = sweep.complete_only(runs)
+    assert kept == {"a": {("Bolt", 0): 1, ("Bolt", 1): 2}, "b": {("Bolt", 0): 6, ("Bolt", 1): 7}}
+    # only seed 0 asked for: Girl is complete there, Dog1 is not (tag b lacks it)
+    kept0 = sweep.complete_only({t: {k: v for k, v in r.items() if k[1] == 0} for t, r in runs.items()}, [0])
+    assert sorted(s for s, _ in kept0["a"]) == ["Bolt", "Girl"]
+    assert sweep.complete_only(runs, [0, 1, 2]) == {"a": {}, "b": {}}

@@ -77,6 +77,7 @@ __all__ = [
     "precision_curve",
     "valid_groundtruth",
     "repair_predictions",
+    "prepare_predictions",
     "SequenceScore",
     "score_sequence",
     "Aggregate",
@@ -233,6 +234,30 @@ def _check_mode(invalid: str) -> None:
         raise ValueError(f"invalid={invalid!r}: expected one of {', '.join(INVALID_MODES)}")
 
 
+def prepare_predictions(
+    pred, gt, invalid: str = "otb", replace_first: bool = True
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The boxes as ``score_sequence`` scores them: ``(pred, gt, valid)``.
+
+    ``pred`` and ``gt`` are ``(n, 4)`` boxes of the same length (a mismatch or an empty
+    sequence raises ``ValueError``). Returns new ``(n, 4)`` float64 predictions with frame 1
+    := ground truth (``replace_first``) and failed boxes repaired (``repair_predictions``),
+    the ``(n, 4)`` float64 ground truth, and the ``(n,)`` bool mask of its scored frames
+    (``valid_groundtruth``).
+    """
+    _check_mode(invalid)
+    pred = _as_boxes(pred, "prediction")
+    gt = _as_boxes(gt, "groundtruth")
+    if pred.shape[0] != gt.shape[0]:
+        raise ValueError(f"prediction has {pred.shape[0]} boxes but the ground truth has {gt.shape[0]}")
+    if gt.shape[0] == 0:
+        raise ValueError("empty sequence")
+    pred = pred.copy()
+    if replace_first:
+        pred[0] = gt[0]
+    return repair_predictions(pred, gt), gt, valid_groundtruth(gt, invalid)
+
+
 def score_sequence(pred, gt, invalid: str = "otb", replace_first: bool = True) -> SequenceScore:
     """Score one result against its ground truth, as the OTB toolkit does.
 
@@ -240,22 +265,11 @@ def score_sequence(pred, gt, invalid: str = "otb", replace_first: bool = True) -
     (a length mismatch raises ``ValueError``; the caller names the file). Steps: frame 1's
     prediction := ground truth (``replace_first``), repair NaN / non-positive-size
     predictions (``repair_predictions``), IoU and centre error per frame, invalid ground-truth
-    frames handled per ``invalid`` (module docstring), curves and scores.
+    frames handled per ``invalid`` (module docstring), curves and scores
+    (``prepare_predictions`` does the first three steps).
     """
-    _check_mode(invalid)
-    pred = _as_boxes(pred, "prediction")
-    gt = _as_boxes(gt, "groundtruth")
-    if pred.shape[0] != gt.shape[0]:
-        raise ValueError(f"prediction has {pred.shape[0]} boxes but the ground truth has {gt.shape[0]}")
+    pred, gt, valid = prepare_predictions(pred, gt, invalid, replace_first)
     n = gt.shape[0]
-    if n == 0:
-        raise ValueError("empty sequence")
-    pred = pred.copy()
-    if replace_first:
-        pred[0] = gt[0]
-    pred = repair_predictions(pred, gt)
-
-    valid = valid_groundtruth(gt, invalid)
     ov = overlap_ratio(pred, gt)
     err = center_error(pred, gt)
     # leftover non-finite predictions are failures
