@@ -91,6 +91,10 @@ def markdown_table(summary: Summary) -> str:
     ]
     if _shows_std(summary):
         lines.append(f"Cells: mean ± sample standard deviation over {summary.settings['repeat']} repeats.")
+    lines.append(
+        "FPS: frames over the tracker's own wall time in this run; it measures the machine as it was "
+        "(other workers or jobs share it), not the tracker alone: compare speeds with `bench/`."
+    )
     trackers = list(summary.trackers)
     lines += [
         "",
