@@ -9,9 +9,11 @@ Usage::
 
 ``run`` tracks every sequence of every ``--data`` folder (default
 ``../shared/data/otb`` and ``/work/extra``, the 18 sequences the accuracy issue
-judges on) with ``TrackerConfig(**config)``, once per seed index ``k`` in
-``0..seeds-1`` (or the listed ones: ``3-8``, ``0,4``). Seed ``k`` is the one ``smtmvt evaluate --repeat`` gives repeat
-``k`` (:func:`smtmvt.evaluation.pairs.sequence_seed`), and the score is the
+judges on; ``--data /work/extra2`` for the eleven held-out validation
+sequences that ``bench/validation/build.sh`` builds) with
+``TrackerConfig(**config)``, once per seed index ``k`` in ``0..seeds-1``
+(or the listed ones: ``3-8``, ``0,4``). Seed ``k`` is the one ``smtmvt
+evaluate --repeat`` gives repeat ``k`` (:func:`smtmvt.evaluation.pairs.sequence_seed`), and the score is the
 evaluation's (:func:`smtmvt.evaluation.metrics.score_sequence`), so a sweep's
 figures equal an evaluate run's. Each (sequence, seed) writes
 ``RUNS/TAG/<seq>#<k>.json`` (average overlap, AUC, fps, boxes) once it is
