@@ -13,7 +13,8 @@ judges on; ``--data /work/extra2`` for the eleven held-out validation
 sequences that ``bench/validation/build.sh`` builds) with
 ``TrackerConfig(**config)``, once per seed index ``k`` in ``0..seeds-1``
 (or the listed ones: ``3-8``, ``0,4``). Seed ``k`` is the one ``smtmvt
-evaluate --repeat`` gives repeat ``k`` (:func:`smtmvt.evaluation.pairs.sequence_seed`), and the score is the
+evaluate --repeat`` gives repeat ``k``
+(:func:`smtmvt.evaluation.pairs.sequence_seed`), and the score is the
 evaluation's (:func:`smtmvt.evaluation.metrics.score_sequence`), so a sweep's
 figures equal an evaluate run's. Each (sequence, seed) writes
 ``RUNS/TAG/<seq>#<k>.json`` (average overlap, AUC, fps, boxes) once it is
@@ -128,7 +129,7 @@ def run(args) -> None:
             tmp.write_text(json.dumps(rec))
             tmp.replace(tag_dir / f"{name}#{k}.json")
             print(f"  {name:<12} #{k}  {rec['avg_overlap']:.3f}  {rec['fps']:.1f} fps", flush=True)
-    show(argparse.Namespace(tags=[args.tag], out=args.out, seeds=args.seeds))
+    show(argparse.Namespace(tags=[args.tag], out=args.out, seeds=args.seeds, complete=False))
 
 
 def seed_indices(text: str) -> list[int]:
@@ -171,7 +172,7 @@ def complete_only(runs: dict, seeds: list[int] | None = None) -> dict:
 
 def show(args) -> None:
     runs = {tag: _load(Path(args.out) / tag, args.seeds) for tag in args.tags}
-    if getattr(args, "complete", False):
+    if args.complete:
         runs = complete_only(runs, None if args.seeds is None else seed_indices(args.seeds))
     seqs = sorted({s for recs in runs.values() for s, _ in recs}, key=str.lower)
     folders = {rec["sequence"]: rec.get("folder", "?") for recs in runs.values() for rec in recs.values()}
