@@ -300,7 +300,7 @@ def test_the_filter_learns_only_from_confident_frames(demo):
     frames, box = demo.frames, demo.groundtruth[0]
 
     def models(gate):
-        t = Tracker(TrackerConfig(n_particles=60, seed=0, correlation_learn_gate=gate))
+        t = Tracker(TrackerConfig(n_particles=60, seed=0, correlation_learn_gate=gate, template_learn_gate=(0.0, 0.0)))
         t.init(frames[0], box)
         out = []
         for f in frames[1:4]:
@@ -308,7 +308,7 @@ def test_the_filter_learns_only_from_confident_frames(demo):
             out.append(t._filter.model.A.copy())
         return out, t._filter.history
 
-    always, none_kept = models((0.0, 0.0))
+    always, none_kept = models((0.0, 0.0))  # no gate at all: no response is judged
     assert none_kept == [] and not np.array_equal(always[1], always[2])
     # a gate no response passes (a peak 10 times the mean): the filter learns from frame 1 only
     never, history = models((10.0, 10.0))
@@ -318,6 +318,30 @@ def test_the_filter_learns_only_from_confident_frames(demo):
     with pytest.raises(ValueError, match="correlation_learn_gate"):
         TrackerConfig(correlation_learn_gate=(0.7,))
     assert TrackerConfig.paper().correlation_learn_gate == (0.0, 0.0)
+
+
+def test_templates_are_replaced_only_on_frames_their_gate_passes(demo):
+    """With an update angle of 0 every frame replaces a template (the demo's
+    first frames are not occluded); a template gate no response passes
+    leaves only frame 1's replacement (the first response judged always
+    passes), whatever the filter's own gate; without the filter the gate has
+    nothing to judge and changes nothing."""
+    frames, box = demo.frames, demo.groundtruth[0]
+
+    def replaced(**kw):
+        t = Tracker(TrackerConfig(n_particles=60, seed=0, update_angle=0.0, **kw))
+        t.init(frames[0], box)
+        return [t.update(f).template_replaced is not None for f in frames[1:6]]
+
+    assert replaced(template_learn_gate=(0.0, 0.0)) == [True] * 5
+    never = [True] + [False] * 4
+    assert replaced(template_learn_gate=(10.0, 10.0)) == never
+    assert replaced(template_learn_gate=(10.0, 10.0), correlation_learn_gate=(0.0, 0.0)) == never
+    no_filter = dict(correlation_weight=0.0, correlation_particles=0.0)
+    assert replaced(template_learn_gate=(10.0, 10.0), **no_filter) == [True] * 5
+    with pytest.raises(ValueError, match="template_learn_gate"):
+        TrackerConfig(template_learn_gate=(0.7, -1.0))
+    assert TrackerConfig.paper().template_learn_gate == (0.0, 0.0)
 
 
 @pytest.mark.parametrize("rate", [0.02, 0.3])

@@ -29,9 +29,10 @@ The tracker also places a fraction of each frame's particles about the
 response's peak (:func:`peak_point`; ``TrackerConfig.correlation_particles``),
 so that the search reaches where the filter sees the target even when the
 random walk does not; and it may let the filter learn only from frames whose
-response is confident (:meth:`CorrelationFilter.confident`, LMCF's peak and
-:func:`apce` test; ``TrackerConfig.correlation_learn_gate``), so that an
-occluder or a look-alike that took the box does not enter the filter.
+response is confident (:meth:`CorrelationFilter.judge` and :func:`clears`,
+LMCF's peak and :func:`apce` test; ``TrackerConfig.correlation_learn_gate``), so that an
+occluder or a look-alike that took the box does not enter the filter; the
+template update may wait for the same test (``TrackerConfig.template_learn_gate``).
 
 The response may also mix in, at a fixed share, the response of the filter
 trained on the first box and never updated
@@ -75,6 +76,7 @@ __all__ = [
     "relative_scores",
     "peak_point",
     "apce",
+    "clears",
     "CorrelationFilter",
 ]
 
@@ -306,6 +308,17 @@ def apce(response: np.ndarray) -> float:
     return (float(r.max()) - lo) ** 2 / energy
 
 
+def clears(judged: tuple[tuple[float, float], np.ndarray] | None, gate: tuple[float, float]) -> bool:
+    """Whether a response :meth:`CorrelationFilter.judge` judged is confident
+    (LMCF's criterion): its peak at least ``gate[0]`` times, and its APCE at
+    least ``gate[1]`` times, their means over the responses before; always on
+    the first (``judged`` None)."""
+    if judged is None:
+        return True
+    now, past = judged
+    return bool(now[0] >= gate[0] * past[0] and now[1] >= gate[1] * past[1])
+
+
 class CorrelationFilter:
     """The filter of one tracked target: trained on the first box, scored at
     candidates' centres, updated from each chosen box at ``LEARNING_RATE``.
@@ -322,21 +335,24 @@ class CorrelationFilter:
         self.model = train(self._features(frame, b), self._label)
         #: the filter of the first box, never updated (:meth:`response`'s ``first``)
         self.first = self.model
-        #: (peak, APCE) of each response judged by :meth:`confident`
+        #: (peak, APCE) of each response judged by :meth:`judge`
         self.history: list[tuple[float, float]] = []
         self._history_sum = np.zeros(2)
 
-    def confident(self, response: np.ndarray, gate: tuple[float, float]) -> bool:
-        """Whether ``response`` is confident enough to learn from (LMCF's
-        criterion): its peak at least ``gate[0]`` times, and its :func:`apce` at
-        least ``gate[1]`` times, their means over the responses judged before
-        (always on the first). Records the response's peak and APCE in
-        :attr:`history`."""
+    def judge(self, response: np.ndarray) -> tuple[tuple[float, float], np.ndarray] | None:
+        """``(now, past)``: ``response``'s peak and :func:`apce`, and their means
+        over the responses judged before (None on the first). Records ``now``
+        in :attr:`history`. :func:`clears` says whether they pass a gate."""
         now = (float(np.max(response)), apce(response))
         past = self._history_sum / len(self.history) if self.history else None
         self.history.append(now)
         self._history_sum += now
-        return past is None or (now[0] >= gate[0] * past[0] and now[1] >= gate[1] * past[1])
+        return None if past is None else (now, past)
+
+    def confident(self, response: np.ndarray, gate: tuple[float, float]) -> bool:
+        """Whether ``response`` is confident enough to learn from (LMCF's
+        criterion): :meth:`judge`, then :func:`clears` with ``gate``."""
+        return clears(self.judge(response), gate)
 
     def _window(self, box) -> Window:
         """The window about ``box`` (its centre, its size)."""

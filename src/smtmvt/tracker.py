@@ -39,7 +39,7 @@ from threadpoolctl import ThreadpoolController
 from .anchor import anchor_offsets
 from .background import background_offsets, ring_states
 from .config import TrackerConfig
-from .correlation import CELL, CorrelationFilter, peak_point, relative_scores
+from .correlation import CELL, CorrelationFilter, clears, peak_point, relative_scores
 from .features import Patches, extract_views, intensity_template_size
 from .features.coarse import GAMMA_FLOOR
 from .features.tan_triggs import TAN_TRIGGS_GAMMA
@@ -594,9 +594,15 @@ class Tracker:
             self._rng.bit_generator.state = rng_state
             self._frame_index -= 1
             raise
+        judged = self._judge(response)
         obs, views_of = self._observe(prepared, probe_planes, particles, probe_states, plane_scale, response)
-        result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale)
-        if self._filter is not None and detail.best is not None and self._learns(response):
+        learn = self._learns(judged, self.config.template_learn_gate)
+        result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale, learn)
+        if (
+            self._filter is not None
+            and detail.best is not None
+            and self._learns(judged, self.config.correlation_learn_gate)
+        ):
             with self._timed("likelihood"):
                 self._filter.update(frame, self._from_work(self._work_box), self.config.correlation_rate)
         return result, detail
@@ -613,15 +619,23 @@ class Tracker:
             box = self._from_work(affine_to_box(self._predicted()))
             return self._filter.response(frame, box, self.config.correlation_first)
 
-    def _learns(self, response) -> bool:
-        """Whether the filter learns from this frame's box: always, or with
-        ``config.correlation_learn_gate`` only when this frame's ``response``
-        is confident (:meth:`CorrelationFilter.confident`)."""
-        gate = self.config.correlation_learn_gate
-        if response is None or not any(gate):
-            return True
+    def _judge(self, response):
+        """This frame's ``response`` judged against the responses before
+        (:meth:`CorrelationFilter.judge`: ``(now, past)``, None on the first),
+        or None without the filter or without a gate to judge it by."""
+        cfg = self.config
+        if response is None or not any(cfg.correlation_learn_gate + cfg.template_learn_gate):
+            return None
         assert self._filter is not None
-        return self._filter.confident(response[0], gate)
+        return self._filter.judge(response[0])
+
+    @staticmethod
+    def _learns(judged, gate) -> bool:
+        """Whether a learner with ``gate`` (``config.correlation_learn_gate``
+        for the filter, ``config.template_learn_gate`` for the templates)
+        learns from this frame: always without a gate, else only when the
+        ``judged`` response (:meth:`_judge`) clears it (:func:`clears`)."""
+        return not any(gate) or clears(judged, gate)
 
     def _propagate(self, response=None) -> np.ndarray:
         """This frame's ``(n, 6)`` particles: the last frame's resampled by their
@@ -766,9 +780,10 @@ class Tracker:
             states, self._predicted()[4:], translation_std(self._state, cfg.affine_std, cfg.translation_power)
         )
 
-    def _decide(self, particles, obs, views_of, probe_boxes, prepared, plane_scale: float):
+    def _decide(self, particles, obs, views_of, probe_boxes, prepared, plane_scale: float, learn: bool):
         """The state from the likelihoods: the best particle (or their mean),
-        the template update and the next frame's resampling weights."""
+        the template update (no template replaced unless ``learn``) and the
+        next frame's resampling weights."""
         cfg = self.config
         p = obs.likelihood[: len(particles)]
         if not np.any(p > 0):
@@ -784,7 +799,7 @@ class Tracker:
                 views,
                 obs.C[:, :, best],
                 [Ek[:, best] for Ek in obs.E],
-                update_angle=self._update_angle(),
+                update_angle=self._update_angle() if learn else np.inf,
                 occlusion_fraction=cfg.occlusion_fraction,
                 intensity_view=self._intensity_index,
                 anchor_cos=cfg.anchor_cos,
