@@ -30,9 +30,10 @@ response's peak (:func:`peak_point`; ``TrackerConfig.correlation_particles``),
 so that the search reaches where the filter sees the target even when the
 random walk does not; and it may let the filter learn only from frames whose
 response is confident (:meth:`CorrelationFilter.judge` and :func:`clears`,
-LMCF's peak and :func:`apce` test; ``TrackerConfig.correlation_learn_gate``), so that an
-occluder or a look-alike that took the box does not enter the filter; the
-template update may wait for the same test (``TrackerConfig.template_learn_gate``).
+LMCF's peak and :func:`apce` test; ``TrackerConfig.correlation_learn_gate``),
+so that an occluder or a look-alike that took the box does not enter the
+filter; the template update may wait for the same test
+(``TrackerConfig.template_learn_gate``).
 
 The response may also mix in, at a fixed share, the response of the filter
 trained on the first box and never updated
