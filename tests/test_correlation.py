@@ -10,6 +10,7 @@ from smtmvt.correlation import (
     CELL,
     CorrelationFilter,
     apce,
+    clears,
     gaussian_label,
     peak_point,
     respond,
@@ -296,6 +297,27 @@ def test_confident_compares_with_the_mean_of_the_responses_before():
     assert len(cf.history) == 5 and cf.history[0] == (1.0, apce(sharp))
 
 
+def test_judged_with_a_memory_compares_with_the_last_responses_only():
+    """A response that fades slowly (0.9 of the one before, frame after frame)
+    fails a gate against the mean of all the responses before it, and passes
+    against the mean of the last three; a sudden drop fails both."""
+    img, box = _texture(), np.array([140.0, 100.0, 60.0, 40.0])
+    cf = CorrelationFilter(img, box)
+    sharp = _bump((25, 30), (10, 12), 1.0, 1.0)
+    assert cf.judge(sharp) is None and cf.judged(3) is None
+    for k in range(1, 8):
+        everything = cf.judge(0.9**k * sharp)
+    assert everything is not None
+    now, past = cf.judged(3)
+    assert now == pytest.approx((0.9**7, apce(sharp))) and everything[0] == now
+    np.testing.assert_allclose(past[0], np.mean([0.9**6, 0.9**5, 0.9**4]), rtol=1e-12)
+    np.testing.assert_allclose(cf.judged(0)[1], everything[1], rtol=1e-12)
+    np.testing.assert_allclose(cf.judged(50)[1], everything[1], rtol=1e-12)
+    assert not clears(everything, (0.7, 0.45)) and clears(cf.judged(3), (0.7, 0.45))
+    dropped = cf.judge(0.3 * 0.9**7 * sharp)
+    assert not clears(dropped, (0.7, 0.45)) and not clears(cf.judged(3), (0.7, 0.45))
+
+
 def test_the_filter_learns_only_from_confident_frames(demo):
     frames, box = demo.frames, demo.groundtruth[0]
 
@@ -324,8 +346,9 @@ def test_templates_are_replaced_only_on_frames_their_gate_passes(demo):
     """With an update angle of 0 every frame replaces a template (the demo's
     first frames are not occluded); a template gate no response passes
     leaves only frame 1's replacement (the first response judged always
-    passes), whatever the filter's own gate; without the filter the gate has
-    nothing to judge and changes nothing."""
+    passes), whatever the filter's own gate, and so does a floor no peak
+    reaches; without the filter the gate has nothing to judge and changes
+    nothing."""
     frames, box = demo.frames, demo.groundtruth[0]
 
     def replaced(**kw):
@@ -337,11 +360,44 @@ def test_templates_are_replaced_only_on_frames_their_gate_passes(demo):
     never = [True] + [False] * 4
     assert replaced(template_learn_gate=(10.0, 10.0)) == never
     assert replaced(template_learn_gate=(10.0, 10.0), correlation_learn_gate=(0.0, 0.0)) == never
+    # a gate every response passes, under a floor none does (a peak 10 times its mean over all frames)
+    assert replaced(template_learn_gate=(0.01, 0.01), template_learn_floor=0.0) == [True] * 5
+    assert replaced(template_learn_gate=(0.01, 0.01), template_learn_floor=10.0) == never
     no_filter = dict(correlation_weight=0.0, correlation_particles=0.0)
     assert replaced(template_learn_gate=(10.0, 10.0), **no_filter) == [True] * 5
     with pytest.raises(ValueError, match="template_learn_gate"):
         TrackerConfig(template_learn_gate=(0.7, -1.0))
+    with pytest.raises(ValueError, match="template_learn_memory"):
+        TrackerConfig(template_learn_memory=-1)
+    with pytest.raises(ValueError, match="template_learn_floor"):
+        TrackerConfig(template_learn_floor=-0.1)
     assert TrackerConfig.paper().template_learn_gate == (0.0, 0.0)
+
+
+@pytest.mark.parametrize("memory", [0, 4])
+def test_the_template_gate_judges_against_its_memory(demo, monkeypatch, memory):
+    """The template gate's verdict is the filter's :meth:`judged` with
+    ``template_learn_memory``: a gate that passes every judged response but
+    one made to fail (its past mean raised 100-fold) replaces no template
+    on exactly the frames where that verdict was asked for with the memory."""
+    frames, box = demo.frames, demo.groundtruth[0]
+    asked = []
+    original = CorrelationFilter.judged
+
+    def judged(self, m=0):
+        asked.append(m)
+        now, past = original(self, m)
+        return now, 100.0 * past
+
+    monkeypatch.setattr(CorrelationFilter, "judged", judged)
+    t = Tracker(
+        TrackerConfig(
+            n_particles=60, seed=0, update_angle=0.0, template_learn_gate=(0.1, 0.1), template_learn_memory=memory
+        )
+    )
+    t.init(frames[0], box)
+    replaced = [t.update(f).template_replaced is not None for f in frames[1:5]]
+    assert replaced == [True, False, False, False] and asked == [memory] * 3
 
 
 @pytest.mark.parametrize("rate", [0.02, 0.3])

@@ -32,8 +32,9 @@ random walk does not; and it may let the filter learn only from frames whose
 response is confident (:meth:`CorrelationFilter.judge` and :func:`clears`,
 LMCF's peak and :func:`apce` test; ``TrackerConfig.correlation_learn_gate``),
 so that an occluder or a look-alike that took the box does not enter the
-filter; the template update may wait for the same test
-(``TrackerConfig.template_learn_gate``).
+filter; the template update may wait for the same test, made against the
+last responses only (:meth:`CorrelationFilter.judged`;
+``TrackerConfig.template_learn_gate``).
 
 The response may also mix in, at a fixed share, the response of the filter
 trained on the first box and never updated
@@ -349,6 +350,18 @@ class CorrelationFilter:
         self.history.append(now)
         self._history_sum += now
         return None if past is None else (now, past)
+
+    def judged(self, memory: int = 0) -> tuple[tuple[float, float], np.ndarray] | None:
+        """``(now, past)`` of the response :meth:`judge` judged last: its peak
+        and APCE, and their means over the ``memory`` responses judged just
+        before it (all of them for 0, as :meth:`judge`); None before two are
+        judged. A short memory lets a gate follow a response that weakens
+        slowly (the target changes scale or look) and still refuse a sudden
+        drop (an occluder, a look-alike)."""
+        if len(self.history) < 2:
+            return None
+        before = self.history[-1 - memory : -1] if memory > 0 else self.history[:-1]
+        return self.history[-1], np.mean(before, axis=0)
 
     def confident(self, response: np.ndarray, gate: tuple[float, float]) -> bool:
         """Whether ``response`` is confident enough to learn from (LMCF's

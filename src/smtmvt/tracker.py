@@ -596,7 +596,7 @@ class Tracker:
             raise
         judged = self._judge(response)
         obs, views_of = self._observe(prepared, probe_planes, particles, probe_states, plane_scale, response)
-        learn = self._learns(judged, self.config.template_learn_gate)
+        learn = self._templates_learn(judged)
         result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale, learn)
         if (
             self._filter is not None
@@ -628,6 +628,22 @@ class Tracker:
             return None
         assert self._filter is not None
         return self._filter.judge(response[0])
+
+    def _templates_learn(self, judged) -> bool:
+        """Whether the template update may replace a template this frame
+        (``config.template_learn_gate``): always without the gate or on the
+        first judged frame; else only when the response clears the gate
+        against the mean of the ``config.template_learn_memory`` responses
+        before (:meth:`CorrelationFilter.judged`) and its peak is at least
+        ``config.template_learn_floor`` times its mean over all of them
+        (``judged``, :meth:`_judge`)."""
+        cfg = self.config
+        if not any(cfg.template_learn_gate) or judged is None:
+            return True
+        assert self._filter is not None
+        recent = clears(self._filter.judged(cfg.template_learn_memory), cfg.template_learn_gate)
+        now, past = judged
+        return recent and now[0] >= cfg.template_learn_floor * past[0]
 
     @staticmethod
     def _learns(judged, gate) -> bool:
