@@ -260,7 +260,8 @@ def test_update_margin_sets_the_trigger_from_the_first_frames_angles(monkeypatch
 
     monkeypatch.setattr(TemplateSet, "update", spy)
     demo = make_demo_sequence(n_frames=14)
-    cfg = TrackerConfig(n_particles=60, seed=0, update_margin=margin)
+    # without the template gate, which gives an infinite trigger on the frames it refuses
+    cfg = TrackerConfig(n_particles=60, seed=0, update_margin=margin, template_learn_gate=(0.0, 0.0))
     assert TrackerConfig().update_margin is None and TrackerConfig.paper().update_margin is None
     t = Tracker(cfg)
     t.init(demo.frames[0], demo.groundtruth[0])
