@@ -1059,6 +1059,11 @@ from .solvers import SOLVERS
 __all__ = ["TrackerConfig"]
 
 
+def _is_gate(gate) -> bool:
+    """Whether ``gate`` is a learn gate's ``(b1, b2)``: two factors, each >= 0."""
+    return len(gate) == 2 and all(0 <= g for g in gate)
+
+
 @dataclass(frozen=True)
 class TrackerConfig:
     """All parameters of :class:`smtmvt.Tracker`.
@@ -1577,9 +1582,8 @@ class TrackerConfig:
             "foreground_weight": self.foreground_weight >= 0,
             "correlation_weight": self.correlation_weight >= 0,
             "correlation_particles": 0 <= self.correlation_particles <= 1,
-            "correlation_learn_gate": len(self.correlation_learn_gate) == 2
-            and all(0 <= g for g in self.correlation_learn_gate),
-            "template_learn_gate": len(self.template_learn_gate) == 2 and all(0 <= g for g in self.template_learn_gate),
+            "correlation_learn_gate": _is_gate(self.correlation_learn_gate),
+            "template_learn_gate": _is_gate(self.template_learn_gate),
             "template_learn_memory": int(self.template_learn_memory) == self.template_learn_memory
             and self.template_learn_memory >= 0,
             "template_learn_floor": self.template_learn_floor >= 0,

@@ -598,11 +598,7 @@ class Tracker:
         obs, views_of = self._observe(prepared, probe_planes, particles, probe_states, plane_scale, response)
         learn = self._templates_learn(judged)
         result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale, learn)
-        if (
-            self._filter is not None
-            and detail.best is not None
-            and self._learns(judged, self.config.correlation_learn_gate)
-        ):
+        if self._filter is not None and detail.best is not None and self._filter_learns(judged):
             with self._timed("likelihood"):
                 self._filter.update(frame, self._from_work(self._work_box), self.config.correlation_rate)
         return result, detail
@@ -645,12 +641,11 @@ class Tracker:
         now, past = judged
         return recent and now[0] >= cfg.template_learn_floor * past[0]
 
-    @staticmethod
-    def _learns(judged, gate) -> bool:
-        """Whether a learner with ``gate`` (``config.correlation_learn_gate``
-        for the filter, ``config.template_learn_gate`` for the templates)
-        learns from this frame: always without a gate, else only when the
+    def _filter_learns(self, judged) -> bool:
+        """Whether the correlation filter learns from this frame's box: always
+        without ``config.correlation_learn_gate``, else only when the
         ``judged`` response (:meth:`_judge`) clears it (:func:`clears`)."""
+        gate = self.config.correlation_learn_gate
         return not any(gate) or clears(judged, gate)
 
     def _propagate(self, response=None) -> np.ndarray:
