@@ -1074,7 +1074,7 @@ level). A looser gate (0.6, 0.4) (``tg64``): seeds 0-5 0.632 against 0.639
 learned, Basketball 0.53 -> 0.44; Walking2 0.67 -> 0.78, Car4 0.72 -> 0.79).
 The floor against the mean peak of the frames that passed the gate, which
 does not decay while a target stays lost as the all-frame mean does
-(``flacc``, code not kept; after Walking2's seed-0 loss at frame 195 it let
+(``flacc``, code not kept; after Walking2's seed-0 loss at frame 194 it let
 2 templates be replaced instead of 15): seeds 0-5 0.638 against 0.639 (18:
 0.679 against 0.681), no target recovered. None kept; the default stays.
 """
