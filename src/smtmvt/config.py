@@ -1304,6 +1304,22 @@ class TrackerConfig:
         as the anchor term keeps the first template in the likelihood. 0:
         the learned model alone, the default (0.3 measured the same over 18
         seeds, 0.5 lower; note [36]).
+    redetect_after : int >= 0
+        A search beyond the random walk's reach once the target seems lost:
+        after this many frames in a row whose correlation response peaks
+        below ``template_learn_floor`` times its mean over the frames before,
+        the filter's response is also taken over the windows about the
+        prediction's moved by half and by one box size in the eight
+        directions, and about the last state the filter learned from; the
+        response over the window centred on their highest peak, where it
+        beats the prediction's and passes ``correlation_learn_gate`` against
+        the frames before, replaces the prediction's for the frame (its term,
+        and the particles placed at its peak, which then take no motion term;
+        the velocity restarts at 0). The templates and the filter learn from
+        that frame only if the chosen box is within half its size of that
+        peak. It only proposes: the likelihood still chooses. It needs the
+        responses judged (a learn gate above 0). 0: off, the paper's search,
+        the default.
     motion_weight : float >= 0
         Weight ``w`` of the motion term: each particle's residual in the
         likelihood gains ``w d_i / (2 alpha)``, ``d_i`` the squared length of
@@ -1545,6 +1561,7 @@ class TrackerConfig:
     template_learn_floor: float = 0.4
     correlation_rate: float = 0.02
     correlation_first: float = 0.0
+    redetect_after: int = 0
     motion_weight: float = 1.0
     term_views: tuple = ("intensity", "color", "hog")
     feature_size: tuple = (32, 32)
@@ -1620,6 +1637,7 @@ class TrackerConfig:
             "template_learn_floor": self.template_learn_floor >= 0,
             "correlation_rate": 0 < self.correlation_rate <= 1,
             "correlation_first": 0 <= self.correlation_first <= 1,
+            "redetect_after": int(self.redetect_after) == self.redetect_after and self.redetect_after >= 0,
             "motion_weight": self.motion_weight >= 0,
             "estimate": self.estimate in ("best", "mean"),
             "fixed_templates": 1 <= int(self.fixed_templates) <= int(self.n_templates),
@@ -1698,6 +1716,7 @@ class TrackerConfig:
             template_learn_gate=(0.0, 0.0),
             template_learn_memory=20,
             template_learn_floor=0.4,
+            redetect_after=0,
             motion_weight=0.0,
             term_views=("intensity", "color", "hog"),
             feature_size=(32, 32),

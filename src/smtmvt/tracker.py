@@ -39,7 +39,7 @@ from threadpoolctl import ThreadpoolController
 from .anchor import anchor_offsets
 from .background import background_offsets, ring_states
 from .config import TrackerConfig
-from .correlation import CELL, CorrelationFilter, clears, peak_point, relative_scores
+from .correlation import CELL, CorrelationFilter, apce, clears, peak_point, relative_scores
 from .features import Patches, extract_views, intensity_template_size
 from .features.coarse import GAMMA_FLOOR
 from .features.tan_triggs import TAN_TRIGGS_GAMMA
@@ -71,6 +71,9 @@ DOG_RATIO = 2.0
 
 #: Frames whose update angles set the trigger of ``config.update_margin``.
 UPDATE_FLOOR_FRAMES = 10
+
+#: How far ``config.redetect_after``'s windows are moved, in box widths (x) and heights (y).
+REDETECT_REACH = (0.5, 1.0)
 
 
 @dataclass(frozen=True)
@@ -499,6 +502,11 @@ class Tracker:
         self._background = self._background_views(prepared)
         self._intensity_index = cfg.views.index("intensity") if "intensity" in cfg.views else None
         self._first_angles: list[float] = []  # the update rule's angles on the first frames (update_margin)
+        # config.redetect_after: frames in a row the target seemed lost, the last state the
+        # filter learned from, and whether this frame's response came from the wider search
+        self._lost = 0
+        self._last_learned = self._state.copy()
+        self._redetected = False
         self._initialized = True
 
     # -- the working frame (config.frame_size) ------------------------------
@@ -596,12 +604,37 @@ class Tracker:
             raise
         judged = self._judge(response)
         obs, views_of = self._observe(prepared, probe_planes, particles, probe_states, plane_scale, response)
-        learn = self._templates_learn(judged)
+        learn = self._templates_learn(judged) and (not self._redetected or self._near_peak(obs, particles, response))
         result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale, learn)
-        if self._filter is not None and detail.best is not None and self._filter_learns(judged):
+        learns = self._filter_learns(judged) and (not self._redetected or self._near_peak(None, None, response))
+        self._lost = self._lost + 1 if self._seems_lost(judged) else 0
+        if self._filter is not None and detail.best is not None and learns:
+            self._last_learned = self._state.copy()
             with self._timed("likelihood"):
                 self._filter.update(frame, self._from_work(self._work_box), self.config.correlation_rate)
         return result, detail
+
+    def _seems_lost(self, judged) -> bool:
+        """Whether this frame's ``judged`` response (:meth:`_judge`) says the
+        target is lost: its peak below ``config.template_learn_floor`` times
+        its mean over the frames before."""
+        if judged is None:
+            return False
+        now, past = judged
+        return bool(now[0] < self.config.template_learn_floor * past[0])
+
+    def _near_peak(self, obs, particles, response) -> bool:
+        """Whether the box chosen this frame (with ``obs``: the most likely of
+        ``particles``, before :meth:`_decide` makes it the state; else the
+        state) lies within half its size of the peak of ``response``."""
+        if obs is None:
+            state = self._state
+        else:
+            p = obs.likelihood[: len(particles)]
+            state = particles[int(np.argmax(p))] if np.any(p > 0) else self._state
+        box = self._from_work(affine_to_box(state))
+        centre = box_to_affine(box)[4:]
+        return bool(np.hypot(*(centre - peak_point(*response))) <= 0.5 * np.sqrt(box[2] * box[3]))
 
     def _response(self, frame) -> tuple | None:
         """The correlation filter's response over its window about this frame's
@@ -611,9 +644,47 @@ class Tracker:
         if self._filter is None:
             return None
         check_frame(frame, f"frame {self._frame_index}")
+        cfg = self.config
         with self._timed("likelihood"):
             box = self._from_work(affine_to_box(self._predicted()))
-            return self._filter.response(frame, box, self.config.correlation_first)
+            response = self._filter.response(frame, box, cfg.correlation_first)
+            self._redetected = False
+            if cfg.redetect_after and self._lost >= cfg.redetect_after:
+                found = self._redetect(frame, box, response)
+                if found is not None:
+                    response, self._redetected = found, True
+            return response
+
+    def _redetect(self, frame, box, response) -> tuple | None:
+        """The wider search of ``config.redetect_after``: the best response
+        over the windows about ``box`` (frame pixels) moved by half and by one
+        box size in the eight directions, and about the last state the filter
+        learned from; the response over the window centred on their highest
+        peak where it beats ``response`` and passes the filter's learn gate
+        against the frames before; else None."""
+        assert self._filter is not None
+        if not self._filter.history:
+            return None
+        cfg = self.config
+        b = np.asarray(box, dtype=np.float64)
+        moves = [(r * dx, r * dy) for r in REDETECT_REACH for dx in (-1, 0, 1) for dy in (-1, 0, 1) if dx or dy]
+        boxes = [b + np.array([mx * b[2], my * b[3], 0.0, 0.0]) for mx, my in moves]
+        last = self._from_work(affine_to_box(self._last_learned))
+        lb = b.copy()
+        lb[:2] = last[:2] + (last[2:] - b[2:]) / 2.0  # the last learned centre, this frame's size
+        if np.hypot(*(lb[:2] - b[:2])) > 0.5 * np.sqrt(b[2] * b[3]):
+            boxes.append(lb)
+        best = max((self._filter.response(frame, c, cfg.correlation_first) for c in boxes), key=lambda rw: rw[0].max())
+        # judged on the window centred on that peak: off the window's centre the Hann
+        # window weakens the target and its APCE says little
+        centred = b.copy()
+        centred[:2] = peak_point(*best) - (b[2:] - 1.0) / 2.0
+        best = self._filter.response(frame, centred, cfg.correlation_first)
+        if not best[0].max() > response[0].max():
+            return None
+        past = np.mean(self._filter.history, axis=0)
+        now = (float(best[0].max()), apce(best[0]))
+        return best if clears((now, past), cfg.correlation_learn_gate) else None
 
     def _judge(self, response):
         """This frame's ``response`` judged against the responses before
@@ -677,6 +748,8 @@ class Tracker:
             # each particle's own prediction (its parent moved by the velocity term) and the
             # random walk's translation std there, for the motion term
             predicted = particles[:, 4:] + (0.0 if shift is None else shift)
+            if self._redetected and count:  # the wider search's particles: no motion term
+                predicted[len(moved) - count :] = moved[len(moved) - count :, 4:]
             self._steps = (predicted, translation_std(particles, std, cfg.translation_power))
             return moved
 
@@ -821,7 +894,7 @@ class Tracker:
         if decision.replaced is not None:
             self._bases = None  # a dictionary column changed: its range bases are recomputed
         state = (p / p.sum()) @ particles if cfg.estimate == "mean" else particles[best].copy()
-        self._velocity = state[4:] - self._state[4:]
+        self._velocity = np.zeros(2) if self._redetected else state[4:] - self._state[4:]
         self._expand = self._search_expand(float(obs.residual[best]))
         self._state = state
         self._work_box = tuple(float(v) for v in affine_to_box(self._state))

@@ -1,0 +1,103 @@
+"""The wider search after a loss (``TrackerConfig.redetect_after``)."""
+
+import cv2
+import numpy as np
+import pytest
+
+from smtmvt import Tracker, TrackerConfig
+from smtmvt.demo import make_demo_sequence
+
+
+@pytest.fixture(scope="module")
+def demo():
+    return make_demo_sequence(n_frames=40)
+
+
+def _jump_sequence(jump, n=10, at=3, seed=3):
+    """A textured background and a checkered target that jumps ``jump`` pixels
+    to the right at frame ``at``, then stays: (frames, 0-based first box)."""
+    rng = np.random.default_rng(seed)
+    bg = cv2.GaussianBlur(rng.random((200, 300, 3)).astype(np.float32), (0, 0), 3.0)
+    bg = (0.2 + 0.3 * (bg - bg.min()) / np.ptp(bg) * 255).astype(np.uint8)
+    yy, xx = np.mgrid[0:32, 0:28]
+    target = np.where(((yy // 8) + (xx // 7)) % 2 == 0, 250, 30).astype(np.uint8)
+    target = np.stack([target, 255 - target // 2, target // 3], axis=2)
+    frames = []
+    for i in range(n):
+        f = bg.copy()
+        x = 60 + (jump if i >= at else 0)
+        f[80:112, x : x + 28] = target
+        frames.append(f)
+    return frames, np.array([60.0, 80.0, 28.0, 32.0])
+
+
+def _xs(frames, box, **config):
+    t = Tracker(TrackerConfig(n_particles=200, **config))
+    t.init(frames[0], box)
+    return np.array([t.update(f).box[0] for f in frames[1:]])
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_the_wider_search_finds_a_target_that_jumped_out_of_the_window(seed):
+    # 40 pixels is 1.4 box widths: the target leaves the filter's window (1.25 widths
+    # a side) and the random walk's reach; it is found in the window one box width over
+    frames, box = _jump_sequence(jump=40)
+    walk = _xs(frames, box, seed=seed, redetect_after=0)
+    wide = _xs(frames, box, seed=seed, redetect_after=2)
+    target = 100.0  # its x from frame 3 on
+    # frames 3 and 4 (indices 2, 3) are the two lost ones: the same boxes as without the search
+    np.testing.assert_array_equal(wide[:4], walk[:4])
+    assert np.abs(walk[2:] - target).min() > 30.0
+    # from frame 5 on, on the target
+    assert np.abs(wide[4:] - target).max() <= 2.0
+
+
+def test_the_wider_search_waits_for_as_many_lost_frames_as_configured():
+    frames, box = _jump_sequence(jump=40)
+    three = _xs(frames, box, seed=0, redetect_after=3)
+    two = _xs(frames, box, seed=0, redetect_after=2)
+    assert abs(two[4] - 100.0) <= 2.0 and abs(three[4] - 100.0) > 30.0
+    assert abs(three[5] - 100.0) <= 2.0
+
+
+def test_a_target_that_stays_in_reach_is_tracked_as_without_the_search(demo):
+    frames, box = demo.frames, demo.groundtruth[0]
+    a = _xs(frames, box, seed=0, redetect_after=0)
+    b = _xs(frames, box, seed=0, redetect_after=1)
+    np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("value", [-1, 1.5])
+def test_config_refuses_a_negative_or_fractional_count(value):
+    with pytest.raises(ValueError, match="redetect_after"):
+        TrackerConfig(redetect_after=value)
+
+
+@pytest.mark.parametrize("near", [True, False])
+def test_a_found_frame_teaches_only_when_the_chosen_box_is_at_the_peak(monkeypatch, near):
+    # frame 5 is the one the wider search finds (above); where the box chosen there is
+    # not within half its size of the peak, neither the filter nor the templates learn
+    from smtmvt.templates import TemplateSet
+
+    frames, box = _jump_sequence(jump=40)
+    t = Tracker(TrackerConfig(n_particles=200, seed=0, redetect_after=2))
+    t.init(frames[0], box)
+    for f in frames[1:5]:
+        t.update(f)
+    angles = []
+    real = TemplateSet.update
+
+    def spy(self, *args, **kwargs):
+        angles.append(kwargs["update_angle"])
+        return real(self, *args, **kwargs)
+
+    monkeypatch.setattr(TemplateSet, "update", spy)
+    monkeypatch.setattr(Tracker, "_near_peak", lambda *a: near)
+    before = t._filter.model.A.copy()
+    t.update(frames[5])
+    assert t._redetected
+    assert len(angles) == 1
+    if near:
+        assert np.isfinite(angles[0]) and not np.array_equal(t._filter.model.A, before)
+    else:
+        assert angles[0] == np.inf and np.array_equal(t._filter.model.A, before)
