@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 from scipy import ndimage
 
+from jump_sequences import jump_sequence
 from smtmvt import Tracker, TrackerConfig
 from smtmvt.correlation import (
     CELL,
@@ -209,30 +210,12 @@ def test_peak_point_is_the_shifted_targets_centre(dx, dy):
     np.testing.assert_allclose(peak_point(one, window), window.points([(5, 3)])[0])
 
 
-def _jump_sequence(jump, n=4, seed=3):
-    """A textured background and a bright checkered target that jumps ``jump``
-    pixels to the right between frames 0 and 1, then stays: (frames, box)."""
-    rng = np.random.default_rng(seed)
-    bg = cv2.GaussianBlur(rng.random((200, 260, 3)).astype(np.float32), (0, 0), 3.0)
-    bg = (0.2 + 0.3 * (bg - bg.min()) / np.ptp(bg) * 255).astype(np.uint8)
-    yy, xx = np.mgrid[0:32, 0:28]
-    target = np.where(((yy // 8) + (xx // 7)) % 2 == 0, 250, 30).astype(np.uint8)
-    target = np.stack([target, 255 - target // 2, target // 3], axis=2)
-    frames = []
-    for i in range(n):
-        f = bg.copy()
-        x = 60 + (jump if i else 0)
-        f[80:112, x : x + 28] = target
-        frames.append(f)
-    return frames, np.array([61.0, 81.0, 28.0, 32.0])  # 1-based
-
-
 def test_particles_placed_at_the_peak_follow_a_jump_the_walk_misses():
-    frames, box = _jump_sequence(jump=30)
+    frames, box = jump_sequence(jump=30, n=4, at=1, width=260)
 
     def error_after_the_jump(fraction, seed):
         t = Tracker(TrackerConfig(correlation_particles=fraction, n_particles=200, seed=seed))
-        t.init(frames[0], box - (1, 1, 0, 0))
+        t.init(frames[0], box)
         t.update(frames[1])
         return abs(t.box[0] - 90.0)  # the target's 0-based x from frame 1 on
 

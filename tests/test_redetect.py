@@ -1,9 +1,9 @@
 """The wider search after a loss (``TrackerConfig.redetect_after``)."""
 
-import cv2
 import numpy as np
 import pytest
 
+from jump_sequences import jump_sequence
 from smtmvt import Tracker, TrackerConfig
 from smtmvt.demo import make_demo_sequence
 
@@ -13,22 +13,9 @@ def demo():
     return make_demo_sequence(n_frames=40)
 
 
-def _jump_sequence(jump, n=10, at=3, seed=3):
-    """A textured background and a checkered target that jumps ``jump`` pixels
-    to the right at frame ``at``, then stays: (frames, 0-based first box)."""
-    rng = np.random.default_rng(seed)
-    bg = cv2.GaussianBlur(rng.random((200, 300, 3)).astype(np.float32), (0, 0), 3.0)
-    bg = (0.2 + 0.3 * (bg - bg.min()) / np.ptp(bg) * 255).astype(np.uint8)
-    yy, xx = np.mgrid[0:32, 0:28]
-    target = np.where(((yy // 8) + (xx // 7)) % 2 == 0, 250, 30).astype(np.uint8)
-    target = np.stack([target, 255 - target // 2, target // 3], axis=2)
-    frames = []
-    for i in range(n):
-        f = bg.copy()
-        x = 60 + (jump if i >= at else 0)
-        f[80:112, x : x + 28] = target
-        frames.append(f)
-    return frames, np.array([60.0, 80.0, 28.0, 32.0])
+def _jump_sequence(jump, n=10):
+    """The target jumps ``jump`` pixels to the right at frame 3 of ``n``."""
+    return jump_sequence(jump, n=n, at=3, width=300)
 
 
 def _xs(frames, box, **config):

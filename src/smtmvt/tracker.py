@@ -709,8 +709,7 @@ class Tracker:
             return True
         assert self._filter is not None
         recent = clears(self._filter.judged(cfg.template_learn_memory), cfg.template_learn_gate)
-        now, past = judged
-        return recent and now[0] >= cfg.template_learn_floor * past[0]
+        return recent and not self._seems_lost(judged)
 
     def _filter_learns(self, judged) -> bool:
         """Whether the correlation filter learns from this frame's box: always
