@@ -1346,17 +1346,6 @@ class TrackerConfig:
         responses judged (a learn gate above 0). Default 10 (note [40]); 3
         also recovered the lost seeds but jumped to the car that hides
         Woman's legs; 0: off, the paper's search.
-    weak_peak_hold : bool
-        On a frame whose correlation response peaks below
-        ``template_learn_floor`` times its mean over the frames before (and
-        that the search of ``redetect_after`` did not replace), the state is
-        the prediction (the last state moved by the velocity term) instead
-        of the most likely particle, every particle starts again from it,
-        and none is placed at that peak (``correlation_particles``): an
-        occluded target is where it was going, and a weak peak (an
-        occluder's, a look-alike's) is no evidence of where it went. The
-        templates and the filter do not learn on such frames either way
-        (their gates refuse them). Default False; the paper has no such rule.
     motion_weight : float >= 0
         Weight ``w`` of the motion term: each particle's residual in the
         likelihood gains ``w d_i / (2 alpha)``, ``d_i`` the squared length of
@@ -1599,7 +1588,6 @@ class TrackerConfig:
     correlation_rate: float = 0.02
     correlation_first: float = 0.0
     redetect_after: int = 10
-    weak_peak_hold: bool = False
     motion_weight: float = 1.0
     term_views: tuple = ("intensity", "color", "hog")
     feature_size: tuple = (32, 32)
@@ -1676,7 +1664,6 @@ class TrackerConfig:
             "correlation_rate": 0 < self.correlation_rate <= 1,
             "correlation_first": 0 <= self.correlation_first <= 1,
             "redetect_after": int(self.redetect_after) == self.redetect_after and self.redetect_after >= 0,
-            "weak_peak_hold": isinstance(self.weak_peak_hold, bool),
             "motion_weight": self.motion_weight >= 0,
             "estimate": self.estimate in ("best", "mean"),
             "fixed_templates": 1 <= int(self.fixed_templates) <= int(self.n_templates),
@@ -1756,7 +1743,6 @@ class TrackerConfig:
             template_learn_memory=20,
             template_learn_floor=0.4,
             redetect_after=0,
-            weak_peak_hold=False,
             motion_weight=0.0,
             term_views=("intensity", "color", "hog"),
             feature_size=(32, 32),

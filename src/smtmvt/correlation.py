@@ -346,14 +346,10 @@ class CorrelationFilter:
         over the responses judged before (None on the first). Records ``now``
         in :attr:`history`. :func:`clears` says whether they pass a gate."""
         now = (float(np.max(response)), apce(response))
-        past = self.past()
+        past = self._history_sum / len(self.history) if self.history else None
         self.history.append(now)
         self._history_sum += now
         return None if past is None else (now, past)
-
-    def past(self) -> np.ndarray | None:
-        """``(peak, apce)`` averaged over the responses judged so far (None before any)."""
-        return self._history_sum / len(self.history) if self.history else None
 
     def judged(self, memory: int = 0) -> tuple[tuple[float, float], np.ndarray] | None:
         """``(now, past)`` of the response :meth:`judge` judged last: its peak

@@ -507,7 +507,6 @@ class Tracker:
         self._lost = 0
         self._last_learned = self._state.copy()
         self._redetected = False
-        self._weak = False
         self._initialized = True
 
     # -- the working frame (config.frame_size) ------------------------------
@@ -654,16 +653,7 @@ class Tracker:
                 found = self._redetect(frame, box, response)
                 if found is not None:
                     response, self._redetected = found, True
-            self._weak = cfg.weak_peak_hold and not self._redetected and self._peak_weak(response[0])
             return response
-
-    def _peak_weak(self, response: np.ndarray) -> bool:
-        """Whether ``response`` peaks below ``config.template_learn_floor``
-        times the mean peak of the responses judged before (as
-        :meth:`_seems_lost` says once it is judged); False before any."""
-        assert self._filter is not None
-        past = self._filter.past()
-        return past is not None and bool(np.max(response) < self.config.template_learn_floor * past[0])
 
     def _redetect(self, frame, box, response) -> tuple | None:
         """The wider search of ``config.redetect_after``: the best response
@@ -747,7 +737,7 @@ class Tracker:
                 std = (*std[:4], std[4] * self._expand, std[5] * self._expand)
             moved = propagate(particles, std, self._rng, shift, self._spread, cfg.translation_power, cfg.aspect_std)
             count = int(round(cfg.correlation_particles * len(moved)))
-            if response is not None and count and not self._weak:
+            if response is not None and count:
                 r, window = response
                 # about the peak cell's centre (as the centre of a one-pixel box, to map it to the
                 # working frame as box centres are), half a cell's standard deviation
@@ -903,17 +893,12 @@ class Tracker:
         if decision.replaced is not None:
             self._bases = None  # a dictionary column changed: its range bases are recomputed
         state = (p / p.sum()) @ particles if cfg.estimate == "mean" else particles[best].copy()
-        if self._weak:  # config.weak_peak_hold: the prediction, not a weak peak's particle
-            state = self._predicted()
         self._velocity = np.zeros(2) if self._redetected else state[4:] - self._state[4:]
         self._expand = self._search_expand(float(obs.residual[best]))
         self._state = state
         self._work_box = tuple(float(v) for v in affine_to_box(self._state))
         self._box = tuple(float(v) for v in self._from_work(self._reported(self._work_box)))
         self._particles, self._weights = particles, p
-        if self._weak:
-            self._particles = np.repeat(state[None], cfg.n_particles, axis=0)
-            self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
         self._background = self._background_views(prepared, plane_scale)
         result = TrackResult(
             box=self._box,
