@@ -139,7 +139,13 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
                                   the passed peaks    seeds 0-5: 0.679 against 0.681 [39]
                                 with a wider search
                                   after 3 lost frames 0.694 over 12 seeds against 0.690 [40]
-                                  after 10 (*)        0.650 on 29 at seeds 6-11, as before [40]
+                                  after 10 (*)        seeds 0-5: 0.692, 6-11: 0.698 [40], [41]
+                                    with the prediction
+                                      held on weak
+                                      peaks           stopped: 0.661 against 0.682 [41]
+                                    with the peak's
+                                      particles' scale
+                                      spread (0.05)   stopped: Basketball 0.62 -> 0.06 [41]
                         with the filter learning from
                           confident frames alone      seeds 0-5: 0.651 against 0.675 [34]
                 with antialias 1.5                    0.623 over 9 seeds against 0.621 [24]
@@ -1102,6 +1108,28 @@ frames with the target in reach. Over 0-11 about +0.007. The demo
 dropped: also asking the first box's filter to prefer the found window, and
 no correlation term on a found frame (neither kept Woman's seed 4 off the car
 with 3).
+
+[41] Stop 38, around ``rd10`` (note [40], the default), over the same 29
+sequences (``bench/sweep.py``; means over the 29, the 18 in brackets). The
+default itself, seeds 0-5: 0.645 (0.692; otb 0.729, extra 0.656, extra2
+0.566); seeds 0-2 per sequence in ``bench/README.md`` (stop 38): otb 0.723,
+no sequence below 0.60; extra 0.655; the 18 0.689 against CSRT's 0.612.
+None kept. A frame whose peak is below the floor holds the prediction: the
+state is the last one moved by the velocity term, every particle starts
+again from it and none is placed at that peak (``hold``; code in commit
+8e4cb96, not kept), stopped at 73 of 174 runs of seeds 0-5: 0.646 against
+0.656 on the same runs (0.661 against 0.682). It keeps Woman behind the car
+at frame 120 (0.42 -> 0.48; there the likelihood prefers a background box
+to the occluded woman, ``bench/diagnose.py`` classes the frame ``model``)
+and Car4 +0.04, but freezes the box where the light weakens the peak (David
+0.71 -> 0.53), and on Basketball's seed 2 the peaks flicker about the
+floor, so the lost count restarts and the wider search that recovers it
+never fires (0.62 -> 0.55); restarting the count only on a confident frame
+(one trace) then let the filter learn a static patch. The particles placed
+at the filter's peak also spread in scale (log-scale std 0.05, ``pscale``),
+stopped at 17 runs: Basketball 0.62 -> 0.06 on 5 seeds (the box shrinks
+to nothing), FaceOcc1 -0.02, Dog1 +0.02: scale options the likelihood can
+take are scale options it takes the wrong way.
 """
 
 from __future__ import annotations
