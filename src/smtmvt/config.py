@@ -139,7 +139,7 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
                                   the passed peaks    seeds 0-5: 0.679 against 0.681 [39]
                                 with a wider search
                                   after 3 lost frames 0.694 over 12 seeds against 0.690 [40]
-                                  after 10 (*)        0.694 over 15 seeds [40], [41]
+                                  after 10 (*)        0.694 over 18 seeds against 0.688 [40], [41]
                                     with the prediction
                                       held on weak
                                       peaks           stopped: 0.661 against 0.682 [41]
@@ -1114,9 +1114,9 @@ with 3).
 [41] Stop 38, around ``rd10`` (note [40], the default), over the same 29
 sequences (``bench/sweep.py``; means over the 29, the 18 in brackets). The
 default itself, seeds 0-5: 0.645 (0.692; otb 0.729, extra 0.656, extra2
-0.566); seeds 12-14: 0.629 (0.686); over seeds 0-14 0.644 (0.694; otb
-0.725, extra 0.662; extra2 0.562), against 0.639 (0.688) for ``floor4``
-over 0-17; seeds 0-2 per sequence in ``bench/README.md`` (stop 38): otb 0.723,
+0.566); seeds 12-14: 0.629 (0.686); 15-17: 0.654 (0.692); over seeds 0-17
+0.645 (0.694; otb 0.725, extra 0.662; extra2 0.567), against 0.639 (0.688;
+extra2 0.561) for ``floor4`` over the same seeds; seeds 0-2 per sequence in ``bench/README.md`` (stop 38): otb 0.723,
 no sequence below 0.60; extra 0.655; the 18 0.689 against CSRT's 0.612.
 None kept. A frame whose peak is below the floor holds the prediction: the
 state is the last one moved by the velocity term, every particle starts
