@@ -1116,8 +1116,9 @@ sequences (``bench/sweep.py``; means over the 29, the 18 in brackets). The
 default itself, seeds 0-5: 0.645 (0.692; otb 0.729, extra 0.656, extra2
 0.566); seeds 12-14: 0.629 (0.686); 15-17: 0.654 (0.692); over seeds 0-17
 0.645 (0.694; otb 0.725, extra 0.662; extra2 0.567), against 0.639 (0.688;
-extra2 0.561) for ``floor4`` over the same seeds; seeds 0-2 per sequence in ``bench/README.md`` (stop 38): otb 0.723,
-no sequence below 0.60; extra 0.655; the 18 0.689 against CSRT's 0.612.
+extra2 0.561) for ``floor4`` over the same seeds; seeds 0-2 per sequence in
+``bench/README.md`` (stop 38): otb 0.723, no sequence below 0.60; extra
+0.655; the 18 0.689 against CSRT's 0.612.
 None kept. A frame whose peak is below the floor holds the prediction: the
 state is the last one moved by the velocity term, every particle starts
 again from it and none is placed at that peak (``hold``; code in commit
