@@ -131,28 +131,38 @@ def test_translation_distance_is_in_standard_deviations():
     np.testing.assert_array_equal(translation_distance(states, (10.0, 20.0), (0.0, 2.0)), [0.0, np.inf])
 
 
+def _first_frame_probes(cfg, probes_of):
+    """Track the demo's first two frames with ``cfg`` and score ``probes_of(box)``
+    (box: the first box, (4,) float64) on the second: ``(residuals, likelihoods)``
+    of the probes."""
+    from smtmvt import Tracker
+    from smtmvt.demo import make_demo_sequence
+
+    demo = make_demo_sequence(n_frames=2)
+    t = Tracker(cfg)
+    t.init(demo.frames[0], demo.groundtruth[0])
+    box = np.asarray(demo.groundtruth[0], dtype=np.float64)
+    _, detail = t.update_detailed(demo.frames[1], probes=probes_of(box))
+    return detail.observation.residual[cfg.n_particles :], detail.probe_likelihood
+
+
 def test_motion_term_weighs_each_candidate_by_the_random_walks_density():
     """On the first frame (no velocity yet) the prediction is the first box: a
     probe moved (dx, dy) pixels keeps its residual, and its likelihood falls by
     exp(-w d / 2), d = (dx^2 + dy^2) / (std * sc)^2."""
-    from smtmvt import Tracker, TrackerConfig
+    from smtmvt import TrackerConfig
     from smtmvt.demo import make_demo_sequence
 
-    demo = make_demo_sequence(n_frames=2)
-    box = np.asarray(demo.groundtruth[0], dtype=np.float64)
+    box = np.asarray(make_demo_sequence(n_frames=1).groundtruth[0], dtype=np.float64)
     moves = np.array([[0.0, 0.0], [6.0, 0.0], [0.0, -9.0], [4.0, 5.0]])
-    probes = np.c_[box[:2] + moves, np.tile(box[2:], (len(moves), 1))]
     cfg = TrackerConfig(n_particles=50, seed=1)
     assert cfg.motion_weight == 1.0 and TrackerConfig.paper().motion_weight == 0.0
 
-    def probe(weight):
-        t = Tracker(cfg.replace(motion_weight=weight))
-        t.init(demo.frames[0], demo.groundtruth[0])
-        _, detail = t.update_detailed(demo.frames[1], probes=probes)
-        return detail.observation.residual[cfg.n_particles :], detail.probe_likelihood
+    def moved(b):
+        return np.c_[b[:2] + moves, np.tile(b[2:], (len(moves), 1))]
 
-    r0, p0 = probe(0.0)
-    r2, p2 = probe(2.0)
+    r0, p0 = _first_frame_probes(cfg.replace(motion_weight=0.0), moved)
+    r2, p2 = _first_frame_probes(cfg.replace(motion_weight=2.0), moved)
     np.testing.assert_array_equal(r0, r2)
     sc = affine_scale(box_to_affine(box[None]))[0]
     d = (moves**2).sum(1) / (cfg.affine_std[4] * sc) ** 2
@@ -229,3 +239,28 @@ def test_place_moves_the_last_states_about_the_point_and_keeps_their_shape():
     assert rng.bit_generator.state == state
     with pytest.raises(ValueError, match="count 2001"):
         place(p, 2001, (0.0, 0.0), (1.0, 1.0), rng)
+
+
+def test_scale_term_favours_the_larger_of_two_candidates_by_their_size_ratio():
+    """With ``scale_push`` b each candidate's residual gains -b log(s_i / s), s
+    the last state's size sqrt(w h): probes about the first box's centre,
+    grown or shrunk, keep their coded residual and their likelihood changes by
+    exp(alpha b log(s_i / s)); 0 (the default) adds nothing; a negative
+    weight is refused."""
+    from smtmvt import TrackerConfig
+
+    factors = np.array([0.8, 0.95, 1.0, 1.1, 1.25])
+    cfg = TrackerConfig(n_particles=50, seed=1)
+    assert cfg.scale_push == 0.0
+
+    def resized(b):
+        centre = b[:2] + b[2:] / 2
+        return np.array([[*(centre - b[2:] * f / 2), *(b[2:] * f)] for f in factors])
+
+    r0, p0 = _first_frame_probes(cfg, resized)
+    r1, p1 = _first_frame_probes(cfg.replace(scale_push=0.3), resized)
+    np.testing.assert_array_equal(r0, r1)
+    assert np.all(p0 > 0)
+    np.testing.assert_allclose(np.log(p1 / p0), cfg.alpha * 0.3 * np.log(factors), rtol=1e-6, atol=1e-9)
+    with pytest.raises(ValueError, match="scale_push"):
+        TrackerConfig(scale_push=-0.1)

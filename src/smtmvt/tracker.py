@@ -824,6 +824,9 @@ class Tracker:
                 d2 = np.concatenate([d2, self._probe_distance(probe_states)])
             motion = cfg.motion_weight * 0.5 * d2 / cfg.alpha
             offset = motion if offset is None else offset + motion
+        if cfg.scale_push:
+            push = -cfg.scale_push * self._log_scale(np.concatenate([particles, probe_states]))
+            offset = push if offset is None else offset + push
         if cfg.foreground_weight:
             contrast = self._contrast(prepared, particles, plane_scale)
             if len(probe_states):
@@ -834,6 +837,13 @@ class Tracker:
             corr = self._correlation(response, np.concatenate([particles, probe_states]))
             offset = corr if offset is None else offset + corr
         return offset
+
+    def _log_scale(self, states: np.ndarray) -> np.ndarray:
+        """``log(s_i / s)`` of each state ``(n, 6)``: its box's size ``sqrt(w h)``
+        against the last state's, ``(n,)``."""
+        wh = affine_to_box(states).reshape(-1, 4)[:, 2:]
+        w0, h0 = affine_to_box(self._state)[2:]
+        return 0.5 * np.log(wh[:, 0] * wh[:, 1] / (w0 * h0))
 
     def _correlation(self, response, states: np.ndarray) -> np.ndarray:
         """The correlation term of each state ``(n, 6)`` (working frame):
