@@ -69,6 +69,7 @@ __all__ = [
     "window_shape",
     "window_at",
     "window_features",
+    "cell_features",
     "gaussian_label",
     "Filter",
     "train",
@@ -196,23 +197,36 @@ def window_features(frame: np.ndarray, window: Window) -> np.ndarray:
     magnitude per unsigned orientation bin; all times a Hann window over the
     cells.
     """
-    img = _resample(frame, window)
-    H, W = img.shape
+    feats = cell_features(_resample(frame, window))
+    return feats * _hann(feats.shape[1:])[None]
+
+
+def cell_features(img: np.ndarray) -> np.ndarray:
+    """Cell features of gray images ``(..., H, W)`` float32 in [0, 1] (``H``,
+    ``W`` multiples of ``CELL``), ``(..., ORIENTATIONS + 1, H / CELL, W / CELL)``
+    float32: each cell's mean gray level less 0.5, then the square roots of
+    its mean gradient magnitude per unsigned orientation bin (no window
+    applied). The gradient is the central difference, 0 on the border rows
+    and columns (OpenCV's ``Sobel`` with ``ksize=1``, its border reflected)."""
+    img = np.asarray(img, dtype=np.float32)
+    H, W = img.shape[-2:]
     h, w = H // CELL, W // CELL
-    gx = cv2.Sobel(img, cv2.CV_32F, 1, 0, ksize=1)
-    gy = cv2.Sobel(img, cv2.CV_32F, 0, 1, ksize=1)
+    gx = np.zeros_like(img)
+    gy = np.zeros_like(img)
+    gx[..., :, 1:-1] = img[..., :, 2:] - img[..., :, :-2]
+    gy[..., 1:-1, :] = img[..., 2:, :] - img[..., :-2, :]
     mag = np.hypot(gx, gy)
     angle = np.mod(np.arctan2(gy, gx), np.pi)
     b = np.minimum((angle * (ORIENTATIONS / np.pi)).astype(np.intp), ORIENTATIONS - 1)
-    energy = np.zeros((ORIENTATIONS, H, W), np.float32)
-    np.put_along_axis(energy, b[None], mag[None], axis=0)
+    lead = img.shape[:-2]
+    energy = np.zeros((*lead, ORIENTATIONS, H, W), np.float32)
+    np.put_along_axis(energy, b[..., None, :, :], mag[..., None, :, :], axis=-3)
     # cell means as sums over the cell's pixels divided by their number: the
     # same float32 operations as ``mean(axis=...)``, which costs twice as much
     n = np.float32(CELL * CELL)
-    cells = energy.reshape(ORIENTATIONS, h, CELL, w, CELL).sum(axis=(2, 4)) / n
-    mean = img.reshape(h, CELL, w, CELL).sum(axis=(1, 3)) / n - 0.5
-    feats = np.concatenate([mean[None], np.sqrt(cells)], axis=0)
-    return feats * _hann((h, w))[None]
+    cells = energy.reshape(*lead, ORIENTATIONS, h, CELL, w, CELL).sum(axis=(-3, -1)) / n
+    mean = img.reshape(*lead, h, CELL, w, CELL).sum(axis=(-3, -1)) / n - 0.5
+    return np.concatenate([mean[..., None, :, :], np.sqrt(cells)], axis=-3)
 
 
 def gaussian_label(cells_shape, box_cells: float) -> np.ndarray:
