@@ -1436,6 +1436,12 @@ class TrackerConfig:
         inside the target costs the views little, one that takes in
         background much). Default 0 (off): 0.2 measured no better over 9
         seeds (note [42]).
+    scale_filter : float in [0, 1]
+        Share of the way (in log) the chosen state's scale moves to the scale
+        filter's estimate (:mod:`smtmvt.scale`, DSST's one-dimensional filter
+        over scales at the chosen centre); the particle cloud moves with it.
+        The filter learns on the frames the correlation filter learns from.
+        0: off.
     term_views : tuple of str
         The views the anchor and background terms compare (those of ``views``
         among them; a term with none of them is 0). Default intensity, color
@@ -1665,6 +1671,7 @@ class TrackerConfig:
     redetect_after: int = 10
     motion_weight: float = 1.0
     scale_push: float = 0.0
+    scale_filter: float = 0.0
     term_views: tuple = ("intensity", "color", "hog")
     feature_size: tuple = (32, 32)
     intensity_factor: float | None = None
@@ -1742,6 +1749,7 @@ class TrackerConfig:
             "redetect_after": int(self.redetect_after) == self.redetect_after and self.redetect_after >= 0,
             "motion_weight": self.motion_weight >= 0,
             "scale_push": self.scale_push >= 0,
+            "scale_filter": 0 <= self.scale_filter <= 1,
             "estimate": self.estimate in ("best", "mean"),
             "fixed_templates": 1 <= int(self.fixed_templates) <= int(self.n_templates),
             "narrow_fraction": 0 <= self.narrow_fraction <= 1,
@@ -1822,6 +1830,7 @@ class TrackerConfig:
             redetect_after=0,
             motion_weight=0.0,
             scale_push=0.0,
+            scale_filter=0.0,
             term_views=("intensity", "color", "hog"),
             feature_size=(32, 32),
             intensity_factor=None,

@@ -59,6 +59,7 @@ from .preprocess import (
     smooth_reach,
     to_unit_range,
 )
+from .scale import ScaleFilter
 from .solvers import BOUNDED_CODING, SOLVERS, solve_smtmvt
 from .solvers.bounds import range_basis
 from .templates import TemplateSet
@@ -492,6 +493,8 @@ class Tracker:
         self._fg_model = foreground_model(prepared.color, wb) if cfg.foreground_weight else None
         # the correlation term's filter, on the frame as given (not the working frame)
         self._filter = CorrelationFilter(frame, b) if cfg.correlation_weight or cfg.correlation_particles else None
+        # the scale filter (config.scale_filter), on the frame as given
+        self._scaler = ScaleFilter(frame, b) if cfg.scale_filter else None
         t_states = self._template_states(self._state)
         if self._crop and not cfg.crop_refresh:  # the templates' planes as every later frame's
             prepared = self._prepare(frame, "init frame", self._channels, 1.0, t_states)
@@ -605,8 +608,11 @@ class Tracker:
         judged = self._judge(response)
         obs, views_of = self._observe(prepared, probe_planes, particles, probe_states, plane_scale, response)
         learn = self._templates_learn(judged) and (not self._redetected or self._near_peak(obs, particles, response))
-        result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale, learn)
+        result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale, learn, frame)
         learns = self._filter_learns(judged) and (not self._redetected or self._near_peak(None, None, response))
+        if self._scaler is not None and detail.best is not None and learns:
+            with self._timed("likelihood"):
+                self._scaler.update(frame, self._box)
         self._lost = self._lost + 1 if self._seems_lost(judged) else 0
         if self._filter is not None and detail.best is not None and learns:
             self._last_learned = self._state.copy()
@@ -873,10 +879,11 @@ class Tracker:
             states, self._predicted()[4:], translation_std(self._state, cfg.affine_std, cfg.translation_power)
         )
 
-    def _decide(self, particles, obs, views_of, probe_boxes, prepared, plane_scale: float, learn: bool):
+    def _decide(self, particles, obs, views_of, probe_boxes, prepared, plane_scale: float, learn: bool, frame=None):
         """The state from the likelihoods: the best particle (or their mean),
-        the template update (no template replaced unless ``learn``) and the
-        next frame's resampling weights."""
+        its scale moved toward the scale filter's (:meth:`_rescaled`), the
+        template update (no template replaced unless ``learn``) and the next
+        frame's resampling weights."""
         cfg = self.config
         p = obs.likelihood[: len(particles)]
         if not np.any(p > 0):
@@ -903,6 +910,12 @@ class Tracker:
         if decision.replaced is not None:
             self._bases = None  # a dictionary column changed: its range bases are recomputed
         state = (p / p.sum()) @ particles if cfg.estimate == "mean" else particles[best].copy()
+        if self._scaler is not None and frame is not None:
+            with self._timed("likelihood"):
+                factor = self._rescaled(frame, state)
+            state[:4] *= factor
+            particles = particles.copy()
+            particles[:, :4] *= factor
         self._velocity = np.zeros(2) if self._redetected else state[4:] - self._state[4:]
         self._expand = self._search_expand(float(obs.residual[best]))
         self._state = state
@@ -920,6 +933,19 @@ class Tracker:
         )
         best_views = [v.copy() for v in views]
         return result, FrameDetail(particles, obs, best, probe_boxes, self._scale, best_views, self._reshape())
+
+    def _rescaled(self, frame, state: np.ndarray) -> float:
+        """The factor on ``state``'s scale (``(6,)``, working frame) that moves
+        it ``config.scale_filter`` of the way, in log, to the scale filter's
+        estimate (:meth:`smtmvt.scale.ScaleFilter.estimate`) at its centre,
+        judged about the last reported box's size."""
+        assert self._scaler is not None
+        chosen = self._from_work(self._reported(affine_to_box(state)))
+        last = np.asarray(self._box, dtype=np.float64)
+        at = np.concatenate([chosen[:2] + (chosen[2:] - last[2:]) / 2.0, last[2:]])  # chosen centre, last size
+        target = np.log(self._scaler.estimate(frame, at)) + 0.5 * np.log(last[2] * last[3])
+        step = self.config.scale_filter * (target - 0.5 * np.log(chosen[2] * chosen[3]))
+        return float(np.exp(step))
 
     def _update_angle(self) -> float:
         """The template update's trigger this frame, degrees: ``config.update_angle``,
