@@ -154,6 +154,8 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
                                       0.1             seeds 0-5: 0.689 against 0.693 [42]
                                     with scale_filter
                                       0.5             seeds 0-5: 0.682 against 0.693 [43]
+                                    with scale_filter
+                                      0.3             seeds 0-2: 0.683 against 0.689 [43]
                         with the filter learning from
                           confident frames alone      seeds 0-5: 0.651 against 0.675 [34]
                 with antialias 1.5                    0.623 over 9 seeds against 0.621 [24]
@@ -1189,7 +1191,10 @@ Per sequence, seeds 0-2 against the default's: Car4 0.75 -> 0.87, Woman
 the lights at frame 267, then is lost), Girl -0.04, Jumping -0.04, Bolt
 -0.07. It helps where the target grows or shrinks steadily and hurts where
 the filter's cells, on a dark or cluttered frame, prefer a smaller box:
-not kept (the otb set falls by 0.03). The option stays, off.
+not kept (the otb set falls by 0.03). Share 0.3 (``sf30``), seeds 0-2:
+0.632 against 0.643 (0.683 against 0.689; otb 0.687; Basketball 0.29,
+Coke 0.08, Woman 0.50; Walking2 0.79, Football 0.73): no better. The
+option stays, off.
 """
 
 from __future__ import annotations
