@@ -70,6 +70,7 @@ __all__ = [
     "window_at",
     "window_features",
     "cell_features",
+    "gray_part",
     "gaussian_label",
     "Filter",
     "train",
@@ -154,6 +155,19 @@ def window_at(center, box_size, size) -> Window:
     return Window(origin, (sx, sy), (int(H), int(W)))
 
 
+def gray_part(frame: np.ndarray, x0: int, y0: int, x1: int, y1: int) -> np.ndarray:
+    """The frame's gray level (the mean of its first three channels over
+    :func:`smtmvt.preprocess.white_level`, clipped to [0, 1]) on columns
+    ``x0 .. x1 - 1`` and rows ``y0 .. y1 - 1``, ``(y1 - y0, x1 - x0)`` float32,
+    the frame's border replicated outside it. Only that part is converted."""
+    f = np.asarray(frame)
+    rows = np.clip(np.arange(y0, y1), 0, f.shape[0] - 1)
+    cols = np.clip(np.arange(x0, x1), 0, f.shape[1] - 1)
+    crop = f[rows][:, cols].astype(np.float32)
+    gray = crop if crop.ndim == 2 else crop[:, :, :3].mean(axis=2)
+    return np.ascontiguousarray(np.clip(gray / white_level(f), 0.0, 1.0), dtype=np.float32)
+
+
 def _resample(frame: np.ndarray, window: Window) -> np.ndarray:
     """The frame's gray level (the mean of its channels, in [0, 1]) on the
     window's pixels, ``(H, W)`` float32, the frame smoothed first where the
@@ -167,12 +181,7 @@ def _resample(frame: np.ndarray, window: Window) -> np.ndarray:
     margin = 3.0 * max(sx, sy, 1.0)
     fx0, fy0 = int(np.floor(x0 - margin)), int(np.floor(y0 - margin))
     fx1, fy1 = int(np.ceil(x0 + (W - 1) * sx + margin)) + 1, int(np.ceil(y0 + (H - 1) * sy + margin)) + 1
-    f = np.asarray(frame)
-    rows = np.clip(np.arange(fy0, fy1), 0, f.shape[0] - 1)
-    cols = np.clip(np.arange(fx0, fx1), 0, f.shape[1] - 1)
-    crop = f[rows][:, cols].astype(np.float32)
-    gray = crop if crop.ndim == 2 else crop[:, :, :3].mean(axis=2)
-    part: np.ndarray = np.ascontiguousarray(np.clip(gray / white_level(f), 0.0, 1.0), dtype=np.float32)
+    part = gray_part(frame, fx0, fy0, fx1, fy1)
     s = max(sx, sy)
     if s > 1.0:
         part = cv2.GaussianBlur(part, (0, 0), sigmaX=0.5 * sx if sx > 1 else 0.3, sigmaY=0.5 * sy if sy > 1 else 0.3)

@@ -28,8 +28,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from .correlation import CELL, cell_features
-from .preprocess import white_level
+from .correlation import CELL, cell_features, gray_part
 
 __all__ = ["N_SCALES", "STEP", "LEARNING_RATE", "MODEL_AREA", "factors", "model_size", "samples", "ScaleFilter"]
 
@@ -75,18 +74,13 @@ def samples(frame: np.ndarray, centre, box_size, scales, size) -> np.ndarray:
     ``centre``: ``(x, y)`` frame pixels; ``box_size``: ``(w, h)`` frame pixels;
     the frame's border is replicated outside it.
     """
-    f = np.asarray(frame)
     sc = np.asarray(scales, dtype=np.float64)
     cx, cy = float(centre[0]), float(centre[1])
     w, h = float(box_size[0]), float(box_size[1])
     # the part of the frame the largest factor reads, border replicated
     hw, hh = 0.5 * w * sc.max() + 1.0, 0.5 * h * sc.max() + 1.0
     x0, y0 = int(np.floor(cx - hw)), int(np.floor(cy - hh))
-    rows = np.clip(np.arange(y0, int(np.ceil(cy + hh)) + 1), 0, f.shape[0] - 1)
-    cols = np.clip(np.arange(x0, int(np.ceil(cx + hw)) + 1), 0, f.shape[1] - 1)
-    crop = f[rows][:, cols].astype(np.float32)
-    gray = crop if crop.ndim == 2 else crop[:, :, :3].mean(axis=2)
-    gray = np.ascontiguousarray(np.clip(gray / white_level(f), 0.0, 1.0), dtype=np.float32)
+    gray = gray_part(frame, x0, y0, int(np.ceil(cx + hw)) + 1, int(np.ceil(cy + hh)) + 1)
     H, W = size
     # one anti-aliasing blur for all factors (they span less than 2x): at the middle one's step
     step = min(w / W, h / H)

@@ -879,7 +879,9 @@ class Tracker:
             states, self._predicted()[4:], translation_std(self._state, cfg.affine_std, cfg.translation_power)
         )
 
-    def _decide(self, particles, obs, views_of, probe_boxes, prepared, plane_scale: float, learn: bool, frame=None):
+    def _decide(
+        self, particles, obs, views_of, probe_boxes, prepared, plane_scale: float, learn: bool, frame: np.ndarray
+    ):
         """The state from the likelihoods: the best particle (or their mean),
         its scale moved toward the scale filter's (:meth:`_rescaled`), the
         template update (no template replaced unless ``learn``) and the next
@@ -910,7 +912,7 @@ class Tracker:
         if decision.replaced is not None:
             self._bases = None  # a dictionary column changed: its range bases are recomputed
         state = (p / p.sum()) @ particles if cfg.estimate == "mean" else particles[best].copy()
-        if self._scaler is not None and frame is not None:
+        if self._scaler is not None:
             with self._timed("likelihood"):
                 factor = self._rescaled(frame, state)
             state[:4] *= factor
