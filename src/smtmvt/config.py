@@ -166,6 +166,8 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
                                       1.15x the box   stopped: Car4 0.75 -> 0.26 [44]
                                     with the state the
                                       mean at alpha/4 0.698 over 6 seeds against 0.693 [44]
+                                    with only its scale
+                                      that mean       0.697 over 6 seeds against 0.693 [44]
                         with the filter learning from
                           confident frames alone      seeds 0-5: 0.651 against 0.675 [34]
                 with antialias 1.5                    0.623 over 9 seeds against 0.621 [24]
@@ -1245,7 +1247,12 @@ against 0.730, extra 0.670 against 0.656, extra2 0.565 against 0.566);
 seeds 0-2 otb 0.713 (Basketball 0.61 -> 0.58, CarDark 0.68 -> 0.61, David
 0.73 -> 0.69, Coke 0.53 -> 0.43, DragonBaby 0.53 -> 0.47; Car4 +0.07,
 Woman +0.09, Football +0.05): the extra set's gain is the otb set's
-loss, within the seeds' noise.
+loss, within the seeds' noise. Only the scale so averaged (the centre and
+shape the best particle's): seeds 0-5 0.647 against 0.645 (0.697 against
+0.693; otb 0.724, extra 0.670, extra2 0.566); seeds 0-2 Coke 0.53 -> 0.62,
+Couple 0.50 -> 0.59, Car4 +0.05; David 0.73 -> 0.69, Basketball 0.61 ->
+0.57: the same trade. Neither averages the shrinking away: both lose
+Basketball and David.
 """
 
 from __future__ import annotations
