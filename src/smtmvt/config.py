@@ -168,6 +168,7 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
                                       mean at alpha/4 0.698 over 6 seeds against 0.693 [44]
                                     with only its scale
                                       that mean       0.697 over 6 seeds against 0.693 [44]
+                                    with velocity 0.25  seeds 0-2: 0.691 against 0.689 [44]
                         with the filter learning from
                           confident frames alone      seeds 0-5: 0.651 against 0.675 [34]
                 with antialias 1.5                    0.623 over 9 seeds against 0.621 [24]
@@ -1252,7 +1253,12 @@ shape the best particle's): seeds 0-5 0.647 against 0.645 (0.697 against
 0.693; otb 0.724, extra 0.670, extra2 0.566); seeds 0-2 Coke 0.53 -> 0.62,
 Couple 0.50 -> 0.59, Car4 +0.05; David 0.73 -> 0.69, Basketball 0.61 ->
 0.57: the same trade. Neither averages the shrinking away: both lose
-Basketball and David.
+Basketball and David. ``velocity`` 0.25 instead of 0.5 (CarDark's lost
+box slides on with the velocity term's momentum; the correlation filter's
+placed particles might now carry the motion): seeds 0-2 0.642 against
+0.643 (0.691 against 0.689; otb 0.720, extra 0.662, extra2 0.561); Car4
++0.12, Couple +0.08, Coke +0.06, CarDark +0.05; Woman 0.42 -> 0.25, Bolt
+0.68 -> 0.59, Basketball 0.61 -> 0.53, David -0.04: level, not kept.
 """
 
 from __future__ import annotations
