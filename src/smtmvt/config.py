@@ -1223,11 +1223,11 @@ correlation filter's peak never below the floor, so the lost count stays
 0 and the wider search of note [40] never runs.
 The scale filter of note [43] at share 0.5, moving the box only when its
 estimate is the larger (the likelihood's own bias is to shrink, note
-[42]): stopped early, Basketball 0.61 -> 0.22, David 0.73 ->
-0.48, Singer2 0.77 -> 0.43 (its noise then only ever grows the box). The
+[42]): stopped early, Basketball 0.61 -> 0.22, David 0.73 -> 0.48,
+Singer2 0.77 -> 0.43 (its noise then only ever grows the box). The
 same filter never learning after the first frame: stopped after 21
-runs, Basketball 0.61 -> 0.09, Woman 0.42 -> 0.32, FaceOcc1 -0.07, Girl -0.12;
-Car4 +0.09. The foreground contrast's ring (``smtmvt.foreground.RING``)
+runs, Basketball 0.61 -> 0.09, Woman 0.42 -> 0.32, FaceOcc1 -0.07, Girl
+-0.12; Car4 +0.09. The foreground contrast's ring (``smtmvt.foreground.RING``)
 at 1.25 instead of 1.5 times the box (in a two-colour target a narrower
 ring punishes a box inside the target more: at 0.9 times the size the
 contrast falls to 0.58 of the true box's instead of 0.81): stopped after
