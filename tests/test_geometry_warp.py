@@ -4,7 +4,7 @@ import cv2
 import numpy as np
 import pytest
 
-from smtmvt.geometry import REF, affine_scale, affine_to_box, box_to_affine, box_with_aspect
+from smtmvt.geometry import REF, affine_scale, affine_to_box, box_scaled, box_to_affine, box_with_aspect
 from smtmvt.warp import inside_fraction, sampling_grid, warp_patches
 
 
@@ -32,6 +32,19 @@ def test_box_with_aspect_keeps_centre_and_area_and_moves_the_log_aspect():
         box_with_aspect(boxes, 1.5, 1.5)
     with pytest.raises(ValueError, match="aspect"):
         box_with_aspect(boxes, 0.0)
+
+
+def test_box_scaled_keeps_centre_and_scales_sides():
+    boxes = np.array([[10.0, 20.0, 30.0, 60.0], [-5.0, 3.0, 12.5, 4.0]])
+    centre = lambda b: np.column_stack([b[:, 0] + (b[:, 2] - 1) / 2, b[:, 1] + (b[:, 3] - 1) / 2])  # noqa: E731
+    for factor in (0.5, 1.0, 1.07):
+        out = box_scaled(boxes, factor)
+        np.testing.assert_allclose(centre(out), centre(boxes), atol=1e-12)
+        np.testing.assert_allclose(out[:, 2:], factor * boxes[:, 2:], rtol=1e-12)
+    np.testing.assert_allclose(box_scaled(boxes[0], 2.0), [-5.0, -10.0, 60.0, 120.0], atol=1e-12)
+    np.testing.assert_array_equal(boxes[0], [10.0, 20.0, 30.0, 60.0])  # the input is not changed
+    with pytest.raises(ValueError, match="factor"):
+        box_scaled(boxes, 0.0)
 
 
 def test_affine_of_box_centre_and_scale():

@@ -35,6 +35,7 @@ __all__ = [
     "affine_scale",
     "box_inside_fraction",
     "box_with_aspect",
+    "box_scaled",
 ]
 
 #: Size of the template reference frame, in template units.
@@ -166,3 +167,24 @@ def box_with_aspect(box, aspect: float, fraction: float = 1.0) -> np.ndarray:
         h2 = np.sqrt(area * np.exp(log_aspect))
         out = np.stack([x + (w - w2) / 2.0, y + (h - h2) / 2.0, w2, h2], axis=1)
     return out[0] if single else out
+
+
+def box_scaled(box, factor: float) -> np.ndarray:
+    """The box of the same centre with its width and height times ``factor``.
+
+    Parameters
+    ----------
+    box : (4,) or (m, 4) array-like, ``(x, y, w, h)`` pixels, 0-based.
+    factor : float > 0.
+
+    Returns
+    -------
+    (4,) or (m, 4) float64 boxes ``(x', y', factor w, factor h)`` with the
+    centre ``(x + (w - 1) / 2, y + (h - 1) / 2)`` unchanged.
+    """
+    if not factor > 0:
+        raise ValueError(f"box_scaled: need factor > 0, got {factor!r}")
+    b = np.array(box, dtype=np.float64)
+    b[..., :2] += b[..., 2:] * (1.0 - factor) / 2.0
+    b[..., 2:] *= factor
+    return b

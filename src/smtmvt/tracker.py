@@ -44,7 +44,15 @@ from .features import Patches, extract_views, intensity_template_size
 from .features.coarse import GAMMA_FLOOR
 from .features.tan_triggs import TAN_TRIGGS_GAMMA
 from .foreground import RING, box_contrast, foreground_map, foreground_model, ring_window
-from .geometry import affine_extent, affine_scale, affine_to_box, box_inside_fraction, box_to_affine, box_with_aspect
+from .geometry import (
+    affine_extent,
+    affine_scale,
+    affine_to_box,
+    box_inside_fraction,
+    box_scaled,
+    box_to_affine,
+    box_with_aspect,
+)
 from .likelihood import Observation, observe
 from .motion import place, propagate, pull_shape, resample, translation_distance, translation_std
 from .preprocess import (
@@ -117,9 +125,10 @@ class FrameDetail:
     scale : (2,) float64 working-frame pixels per input pixel (x, y).
     best_views : the chosen particle's K views, ``(d_k,)`` float32 each (None
         when no candidate was valid).
-    reshape : ``(aspect, fraction)``, how a state's box is reported
+    reshape : ``(aspect, fraction, factor)``, how a state's box is reported
         (``config.report_aspect``: its aspect ratio moved ``fraction`` of the
-        way to the first box's ``aspect``, in the working frame).
+        way to the first box's ``aspect``, in the working frame; then
+        ``config.report_scale``: its width and height times ``factor``).
     """
 
     particles: np.ndarray
@@ -128,7 +137,7 @@ class FrameDetail:
     probe_boxes: np.ndarray
     scale: np.ndarray
     best_views: list | None = None
-    reshape: tuple = (1.0, 0.0)
+    reshape: tuple = (1.0, 0.0, 1.0)
 
     @property
     def boxes(self) -> np.ndarray:
@@ -138,8 +147,10 @@ class FrameDetail:
     @property
     def reported_boxes(self) -> np.ndarray:
         """(n, 4) boxes the tracker would report for each particle (:attr:`boxes`
-        reshaped as ``config.report_aspect`` says), 0-based pixels of the input frame."""
-        work = box_with_aspect(affine_to_box(self.particles).reshape(-1, 4), *self.reshape)
+        reshaped as ``config.report_aspect`` and ``config.report_scale`` say),
+        0-based pixels of the input frame."""
+        aspect, fraction, factor = self.reshape
+        work = box_scaled(box_with_aspect(affine_to_box(self.particles).reshape(-1, 4), aspect, fraction), factor)
         return work / np.tile(self.scale, 2)
 
     @property
@@ -959,17 +970,20 @@ class Tracker:
             return self.config.update_angle
         return min(self.config.update_angle, float(np.median(self._first_angles)) + margin)
 
-    def _reshape(self) -> tuple[float, float]:
-        """``(aspect, fraction)`` of the reported boxes: the first box's aspect
-        ratio ``h / w`` (working frame) and ``config.report_aspect``."""
+    def _reshape(self) -> tuple[float, float, float]:
+        """``(aspect, fraction, factor)`` of the reported boxes: the first box's
+        aspect ratio ``h / w`` (working frame), ``config.report_aspect`` and
+        ``config.report_scale``."""
         first = affine_to_box(self._init_state)
-        return float(first[3] / first[2]), float(self.config.report_aspect)
+        return float(first[3] / first[2]), float(self.config.report_aspect), float(self.config.report_scale)
 
     def _reported(self, work_box) -> np.ndarray:
         """The box reported for the state's box ``work_box`` (working frame): its
         aspect ratio moved ``config.report_aspect`` of the way (in log) to the
-        first box's, at the same centre and area (:func:`box_with_aspect`)."""
-        return box_with_aspect(work_box, *self._reshape())
+        first box's, at the same centre and area (:func:`box_with_aspect`),
+        then its sides times ``config.report_scale`` (:func:`box_scaled`)."""
+        aspect, fraction, factor = self._reshape()
+        return box_scaled(box_with_aspect(work_box, aspect, fraction), factor)
 
     def _search_expand(self, residual: float) -> float:
         """Factor on the next frame's translation std (``config.search_expand``):
