@@ -1282,6 +1282,11 @@ gain (CarDark, Basketball, Girl, Jumping, Woman +0.02, Couple, Subway
 1.08 0.6410 against 0.6438 at 1. The demo (``bench/demo_seeds.py --seeds
 24``): 0.822 against 0.797, every seed up. The gain sits in the otb set,
 which holds the shrinking sequences; the extra set loses a little.
+Also measured in stop 44, not kept: the lost count of note [40] on a
+higher floor, 0.5 of the mean peak instead of 0.4 (CarDark seed 0's
+peak after its loss is 0.47 of the mean, seed 2's tracked low 0.58; code
+not kept): stopped at 84 of 87 runs of seeds 0-2, CarDark unchanged (the
+wider search finds no better window), Basketball seed 2 0.61 -> 0.07.
 """
 
 from __future__ import annotations
