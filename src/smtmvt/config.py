@@ -171,7 +171,7 @@ antialias 1, scale_normalize, HOG and LBP on gray      0.526; 0.505 over 3 seeds
                                       that mean       0.697 over 6 seeds against 0.693 [44]
                                     with velocity 0.25  seeds 0-2: 0.691 against 0.689 [44]
                                     with the reported box
-                                      1.03x (*)       seeds 0-8: 0.698 against 0.695 [45]
+                                      1.03x (*)       0.698 over 12 seeds against 0.694 [45]
                         with the filter learning from
                           confident frames alone      seeds 0-5: 0.651 against 0.675 [34]
                 with antialias 1.5                    0.623 over 9 seeds against 0.621 [24]
@@ -1279,8 +1279,10 @@ gain (CarDark, Basketball, Girl, Jumping, Woman +0.02, Couple, Subway
 0.567 -> 0.569); held-out seeds 3-5 0.646 -> 0.649 (0.696 -> 0.700; otb
 0.734 -> 0.745, extra 0.657 -> 0.655, extra2 0.565 -> 0.566); held-out
 seeds 6-8 0.650 -> 0.653 (0.702 -> 0.705; otb 0.728 -> 0.736, extra 0.676
--> 0.673, extra2 0.566 -> 0.567). Higher on every seed of 0-8 (the 29:
-+0.001 to +0.005), on 165 of their 261 runs. Scanned
+-> 0.673, extra2 0.566 -> 0.567); held-out seeds 9-11 0.650 -> 0.653
+(0.692 -> 0.696; otb 0.719 -> 0.730, extra 0.666 -> 0.663, extra2 0.580 ->
+0.583). Higher on every seed of 0-11 (the 29: +0.001 to +0.005), on 223
+of their 348 runs; over seeds 0-11 0.647 -> 0.650 (0.694 -> 0.698). Scanned
 (seeds 0-5, the 29): 1.02 0.6465, 1.03 0.6469, 1.04 0.6468, 1.05 0.6461,
 1.08 0.6410 against 0.6438 at 1. The demo (``bench/demo_seeds.py --seeds
 24``): 0.822 against 0.797, every seed up. The gain sits in the otb set,
