@@ -17,12 +17,16 @@ def test_box_affine_roundtrip():
     np.testing.assert_allclose(affine_to_box(box_to_affine(boxes[0])), boxes[0], atol=1e-12)
 
 
+def _centre(b):
+    """Centres ``(m, 2)`` of 0-based boxes ``(m, 4)``, OTB's ``x + (w - 1) / 2``."""
+    return np.column_stack([b[:, 0] + (b[:, 2] - 1) / 2, b[:, 1] + (b[:, 3] - 1) / 2])
+
+
 def test_box_with_aspect_keeps_centre_and_area_and_moves_the_log_aspect():
     boxes = np.array([[10.0, 20.0, 30.0, 60.0], [-5.0, 3.0, 12.5, 4.0]])
-    centre = lambda b: np.column_stack([b[:, 0] + (b[:, 2] - 1) / 2, b[:, 1] + (b[:, 3] - 1) / 2])  # noqa: E731
     for fraction in (0.0, 0.25, 1.0):
         out = box_with_aspect(boxes, 1.5, fraction)
-        np.testing.assert_allclose(centre(out), centre(boxes), atol=1e-12)
+        np.testing.assert_allclose(_centre(out), _centre(boxes), atol=1e-12)
         np.testing.assert_allclose(out[:, 2] * out[:, 3], boxes[:, 2] * boxes[:, 3], rtol=1e-12)
         want = (1 - fraction) * np.log(boxes[:, 3] / boxes[:, 2]) + fraction * np.log(1.5)
         np.testing.assert_allclose(np.log(out[:, 3] / out[:, 2]), want, atol=1e-12)
@@ -36,10 +40,9 @@ def test_box_with_aspect_keeps_centre_and_area_and_moves_the_log_aspect():
 
 def test_box_scaled_keeps_centre_and_scales_sides():
     boxes = np.array([[10.0, 20.0, 30.0, 60.0], [-5.0, 3.0, 12.5, 4.0]])
-    centre = lambda b: np.column_stack([b[:, 0] + (b[:, 2] - 1) / 2, b[:, 1] + (b[:, 3] - 1) / 2])  # noqa: E731
     for factor in (0.5, 1.0, 1.07):
         out = box_scaled(boxes, factor)
-        np.testing.assert_allclose(centre(out), centre(boxes), atol=1e-12)
+        np.testing.assert_allclose(_centre(out), _centre(boxes), atol=1e-12)
         np.testing.assert_allclose(out[:, 2:], factor * boxes[:, 2:], rtol=1e-12)
     np.testing.assert_allclose(box_scaled(boxes[0], 2.0), [-5.0, -10.0, 60.0, 120.0], atol=1e-12)
     np.testing.assert_array_equal(boxes[0], [10.0, 20.0, 30.0, 60.0])  # the input is not changed

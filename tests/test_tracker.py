@@ -16,6 +16,11 @@ def demo():
     return make_demo_sequence(n_frames=120)
 
 
+def _centre(b):
+    """Centres ``(m, 2)`` of 0-based boxes ``(m, 4)``, OTB's ``x + (w - 1) / 2``."""
+    return np.column_stack([b[:, 0] + (b[:, 2] - 1) / 2, b[:, 1] + (b[:, 3] - 1) / 2])
+
+
 def _track(frames, box, config):
     t = Tracker(config)
     t.init(frames[0], box)
@@ -281,13 +286,10 @@ def test_report_aspect_reshapes_only_the_reported_box(demo):
     gt0 = demo.groundtruth[0]
     boxes = {f: _track(demo.frames[:20], gt0, FAST.replace(report_aspect=f)) for f in (0.0, 0.5, 1.0)}
 
-    def centre(b):
-        return np.column_stack([b[:, 0] + (b[:, 2] - 1) / 2, b[:, 1] + (b[:, 3] - 1) / 2])
-
     log_aspect = {f: np.log(b[:, 3] / b[:, 2]) for f, b in boxes.items()}
     first = np.log(gt0[3] / gt0[2])
     for f in (0.5, 1.0):
-        np.testing.assert_allclose(centre(boxes[f]), centre(boxes[0.0]), atol=1e-9)
+        np.testing.assert_allclose(_centre(boxes[f]), _centre(boxes[0.0]), atol=1e-9)
         np.testing.assert_allclose(boxes[f][:, 2] * boxes[f][:, 3], boxes[0.0][:, 2] * boxes[0.0][:, 3], rtol=1e-9)
         np.testing.assert_allclose(log_aspect[f], (1 - f) * log_aspect[0.0] + f * first, atol=1e-9)
     assert np.abs(log_aspect[0.0] - first).max() > 0.03
@@ -303,10 +305,7 @@ def test_report_scale_scales_only_the_reported_box(demo):
     gt0 = demo.groundtruth[0]
     boxes = {f: _track(demo.frames[:12], gt0, FAST.replace(report_scale=f)) for f in (1.0, 1.1)}
 
-    def centre(b):
-        return np.column_stack([b[:, 0] + (b[:, 2] - 1) / 2, b[:, 1] + (b[:, 3] - 1) / 2])
-
-    np.testing.assert_allclose(centre(boxes[1.1]), centre(boxes[1.0]), atol=1e-9)
+    np.testing.assert_allclose(_centre(boxes[1.1]), _centre(boxes[1.0]), atol=1e-9)
     np.testing.assert_allclose(boxes[1.1][1:, 2:], 1.1 * boxes[1.0][1:, 2:], rtol=1e-9)
     np.testing.assert_array_equal(boxes[1.1][0], boxes[1.0][0])
     assert TrackerConfig.paper().report_scale == 1.0

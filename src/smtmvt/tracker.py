@@ -110,6 +110,15 @@ class TrackResult:
     frame_index: int
 
 
+def _reshaped_box(box, reshape: tuple) -> np.ndarray:
+    """``box`` ((4,) or (m, 4), working frame) as reported under ``reshape``
+    ``(aspect, fraction, factor)`` (:meth:`Tracker._reshape`): its aspect ratio
+    moved ``fraction`` of the way to ``aspect`` (:func:`box_with_aspect`), then
+    its sides times ``factor`` (:func:`box_scaled`), about the same centre."""
+    aspect, fraction, factor = reshape
+    return box_scaled(box_with_aspect(box, aspect, fraction), factor)
+
+
 @dataclass(frozen=True)
 class FrameDetail:
     """What :meth:`Tracker.update_detailed` computed for one frame.
@@ -149,8 +158,7 @@ class FrameDetail:
         """(n, 4) boxes the tracker would report for each particle (:attr:`boxes`
         reshaped as ``config.report_aspect`` and ``config.report_scale`` say),
         0-based pixels of the input frame."""
-        aspect, fraction, factor = self.reshape
-        work = box_scaled(box_with_aspect(affine_to_box(self.particles).reshape(-1, 4), aspect, fraction), factor)
+        work = _reshaped_box(affine_to_box(self.particles).reshape(-1, 4), self.reshape)
         return work / np.tile(self.scale, 2)
 
     @property
@@ -982,8 +990,7 @@ class Tracker:
         aspect ratio moved ``config.report_aspect`` of the way (in log) to the
         first box's, at the same centre and area (:func:`box_with_aspect`),
         then its sides times ``config.report_scale`` (:func:`box_scaled`)."""
-        aspect, fraction, factor = self._reshape()
-        return box_scaled(box_with_aspect(work_box, aspect, fraction), factor)
+        return _reshaped_box(work_box, self._reshape())
 
     def _search_expand(self, residual: float) -> float:
         """Factor on the next frame's translation std (``config.search_expand``):
