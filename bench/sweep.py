@@ -8,16 +8,16 @@ Usage::
     python bench/sweep.py errors TAG [--out RUNS] [--seeds ...] [--data DIR ...]
 
 ``run`` tracks every sequence of every ``--data`` folder (default
-``../shared/data/otb`` and ``/work/extra``, the 18 sequences the accuracy issue
-judges on; ``--data /work/extra2`` for the eleven held-out validation
-sequences that ``bench/validation/build.sh`` builds) with
+``../shared/data/otb``; add the folders that ``../shared/data/extra/build.sh``
+and ``bench/validation/build.sh`` build for the 29 measuring sequences) with
 ``TrackerConfig(**config)``, once per seed index ``k`` in ``0..seeds-1``
 (or the listed ones: ``3-8``, ``0,4``). Seed ``k`` is the one ``smtmvt
 evaluate --repeat`` gives repeat ``k``
 (:func:`smtmvt.evaluation.pairs.sequence_seed`), and the score is the
 evaluation's (:func:`smtmvt.evaluation.metrics.score_sequence`), so a sweep's
 figures equal an evaluate run's. Each (sequence, seed) writes
-``RUNS/TAG/<seq>#<k>.json`` (average overlap, AUC, fps, boxes) once it is
+``RUNS/TAG/<seq>#<k>.json`` (``RUNS`` is ``--out``, default ``runs/`` in the
+project, which git ignores; average overlap, AUC, fps, boxes) once it is
 done; a run started again skips finished ones, and a larger ``--seeds`` adds
 seeds. ``run.json`` keeps the configuration: another one under the same tag is
 refused. Runs the source tree the interpreter imports ``smtmvt`` from: to
@@ -31,6 +31,9 @@ chosen on: those favour it (the default's seeds 0-2 average 0.626, its seeds
 While a sweep runs, ``--complete`` keeps only the sequences every tag has
 finished on every seed (:func:`complete_only`): a sweep runs the longest
 sequences first, and a mean over those misleads.
+``show --split bench/split.json`` adds each half's mean (the tuning and the
+checking half of ``docs/split.md``): a change is kept only when it helps the
+first and does not hurt the second.
 ``errors`` splits a tag's error per sequence into size and position
 (:func:`error_split`): the average overlap as scored, and as it would be with
 the true box's size at the tracker's centre, and with the tracker's size at
@@ -53,8 +56,8 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-DEFAULT_DATA = [str(ROOT / ".." / "shared" / "data" / "otb"), "/work/extra"]
-DEFAULT_OUT = "/work/runs"
+DEFAULT_DATA = [str(ROOT / ".." / "shared" / "data" / "otb")]
+DEFAULT_OUT = str(ROOT / "runs")
 
 
 def _sequences(data: list[str], only: set[str] | None) -> list[tuple[str, str, str]]:
@@ -198,6 +201,15 @@ def show(args) -> None:
             f"{tag}: mean {_mean(per_seq[s] for s in done):.3f} over {len(done)} sequences; "
             f"per seed {' / '.join(f'{v:.3f}' for v in per_k)}; {parts}; {fps:.1f} fps"
         )
+        if getattr(args, "split", None):
+            halves = json.loads(Path(args.split).read_text())
+            print("  " + "; ".join(_half(per_seq, done, h, halves[h]) for h in ("tune", "check")))
+
+
+def _half(per_seq: dict, done: list, label: str, names: list) -> str:
+    """``label mean (n of N)`` over the sequences of one half of the split that are done."""
+    have = [per_seq[s] for s in names if s in done]
+    return f"{label} {_mean(have):.3f} ({len(have)} of {len(names)})"
 
 
 def error_split(boxes, gt) -> dict:
@@ -276,6 +288,7 @@ def main() -> None:
     s.add_argument("--out", default=DEFAULT_OUT)
     s.add_argument("--seeds", default=None, help="as for run (default: every seed run)")
     s.add_argument("--complete", action="store_true", help="only the sequences every tag has finished for every seed")
+    s.add_argument("--split", default=None, help="a split JSON (bench/split.json): each half's mean too")
     e = sub.add_parser("errors")
     e.add_argument("tag")
     e.add_argument("--out", default=DEFAULT_OUT)
