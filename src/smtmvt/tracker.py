@@ -304,7 +304,7 @@ class Tracker:
         its band-pass at the template's resolution instead of the frame's (the
         gray plane is floored at ``GAMMA_FLOOR``, 1e-4 as for the coarse view,
         before the gamma, unlike Tan-Triggs', so a black pixel becomes 0.16,
-        not 0; measured so in config note [28])."""
+        not 0; measured so in docs/experiments.md#n28)."""
         kind = self.config.intensity_plane
         if kind == "tan_triggs":
             return smooth(frame.normalized, sigma, win)
