@@ -48,460 +48,161 @@ def _is_gate(gate) -> bool:
 
 @dataclass(frozen=True)
 class TrackerConfig:
-    """All parameters of :class:`smtmvt.Tracker`.
+    """All parameters of :class:`smtmvt.Tracker`; :meth:`paper` gives the paper's tracker.
+
+    A field's line says what it is, its unit, default and valid range. The evidence is in
+    ``docs/experiments.md``: "#nN" is note [N] there, "#f-NAME" the field's former full entry.
 
     Attributes
     ----------
-    lam : float
+    lam : float >= 0
         Weight of the per-candidate nuclear norm across views (paper: 0.1).
-    gamma : float
+    gamma : float >= 0
         Weight of the L1 penalties on C and E (paper: 0.25).
-    alpha : float
+    alpha : float > 0
         Likelihood sharpness, ``p = exp(-alpha * residual)`` (paper: 30).
-    n_particles : int
+    n_particles : int >= 1
         Number of particles / candidates per frame (paper: 400).
-    n_templates : int
+    n_templates : int >= 1
         Number of target templates N (paper: 10).
     views : tuple of str
-        Names of the views (see :func:`smtmvt.features.available_views`).
-        Default the paper's four (intensity, color, HOG, LBP) and a fifth,
-        ``"coarse"`` (:mod:`smtmvt.features.coarse`: the gray patch's
-        difference of Gaussians at the template's resolution, where the
-        intensity view's Tan-Triggs plane keeps the frame's finest band only;
-        docs/experiments.md#n29). The template update measures its angle on the intensity
-        view whatever the others.
-    affine_std : tuple of 6 floats
-        Relative standard deviations of the affine random walk
-        ``[a11, a12, a21, a22, tx, ty]``; the diagonal terms are perturbed in log
-        space, the translation is in pixels and multiplied by the target scale
-        ``sc`` (see :mod:`smtmvt.motion`). Default: MTT's OTB setting
-        ``[0.005, 0.0005, 0.0005, 0.005, 4, 4]`` with twice its scale and
-        translation terms. Measured on six sequences (demo, Crossing, Subway,
-        Girl, Jumping, CarDark) with ``update_angle`` 60: translation 8 gave a
-        mean overlap of 0.710, translation 6 gave 0.528 (Subway and Jumping,
-        with fast motion, were lost). MTT's scale terms 0.005 instead of 0.01,
-        with the current default, on the 18 sequences over 3 seeds: 0.540
-        against 0.593 (less aspect drift on CarDark 0.56 -> 0.64, Walking2
-        0.34 -> 0.49, Bolt 0.39 -> 0.50, but Car4, whose target grows, 0.77 ->
-        0.45, Shaking 0.64 -> 0.23, Subway 0.64 -> 0.48).
-    translation_power : float
-        The translation std is ``affine_std[4:] * sc ** translation_power``
-        pixels (``sc`` about the target size over 32): 1 as L1-APG and MTT;
-        0.5 lets large targets search fewer pixels (Car4: 27 px per frame at
-        1, where the car moves a few). Measured with the default views: 0.517
-        against 0.526 (one seed): Car4 0.02 -> 0.37 and Bolt 0.05 -> 0.53,
-        but the fast Deer 0.65 -> 0.26; kept at 1.
-    aspect_std : float or None
-        How the random walk perturbs the box's shape
-        (:func:`smtmvt.motion.propagate`). None: ``a11`` and ``a22``
-        independently by ``affine_std[0]`` and ``affine_std[3]`` in log space
-        (L1-APG, MTT), which moves the log aspect ratio twice as much as the log
-        scale. A float: the scale by ``affine_std[0]`` and the log aspect ratio
-        ``log(h / w)`` by ``aspect_std``. In the ground truth of the 18
-        sequences the log scale strays from the first frame's by 0.04-0.58
-        (rms over frames), the log aspect by 0.00-0.18. None, the default
-        (0.005 measured in the table of docs/experiments.md, docs/experiments.md#n14).
+        The views (:func:`smtmvt.features.available_views`); default the paper's four and
+        ``"coarse"`` (docs/experiments.md#n29, #f-views).
+    affine_std : tuple of 6 floats >= 0
+        Stds of the random walk ``[a11, a12, a21, a22, tx, ty]``, translation in pixels times ``sc``;
+        default MTT's, scale and translation doubled (docs/experiments.md#f-affine_std).
+    translation_power : float in [0, 1]
+        Translation std ``affine_std[4:] * sc ** power`` px; default 1 (docs/experiments.md#f-translation_power).
+    aspect_std : float >= 0 or None
+        Std of the log aspect; None (default): a11, a22 apart (docs/experiments.md#n14, #f-aspect_std).
     narrow_fraction, narrow_scale : float
-        A two-scale search: this fraction of the particles is drawn with
-        ``narrow_scale`` times every standard deviation of ``affine_std`` (fine
-        search around the last state), the others with ``affine_std`` (reach).
-        0: one scale, as the paper. Measured on the 18 sequences with 0.5 and
-        0.25: 0.550 against 0.568 (see the table of docs/experiments.md); kept at 0.
+        Fraction in [0, 1] of the particles drawn at ``narrow_scale`` (> 0) times every std; default 0
+        and 0.25 (docs/experiments.md#n5, #f-narrow_fraction).
     estimate : str
-        The state reported each frame: ``"best"``, the particle of highest
-        likelihood (the paper), or ``"mean"``, the likelihood-weighted mean of
-        the particles' affine parameters (less noisy in scale and aspect). At
-        alpha 30 the weights are so peaked that the mean is the best particle
-        to a thousandth of a pixel (measured on the demo): it matters only
-        with a flatter likelihood.
+        The state: ``"best"`` particle (default) or ``"mean"`` (docs/experiments.md#f-estimate).
     report_aspect : float in [0, 1]
-        The box reported each frame (``TrackResult.box``, :attr:`Tracker.box`)
-        is the state's box with its log aspect ratio ``log(h / w)`` moved
-        this fraction of the way to the first box's, at the same centre and
-        area (:func:`smtmvt.geometry.box_with_aspect`); the particles, the
-        templates and the search keep the state's own shape, so the tracking
-        is the same whatever the value. 1, the default: the first box's
-        aspect ratio (as correlation-filter trackers such as CSRT report
-        theirs). 0: the state's box (the paper). On the 18 sequences the
-        state's box is taller and narrower than the truth on 15 (docs/experiments.md#n22),
-        and the same tracks score 0.621 at 1 against 0.614 at 0 (docs/experiments.md#n23).
+        Reported box's log aspect moved this far to the first box's; default 1, 0 the paper
+        (docs/experiments.md#n23, #f-report_aspect).
     report_scale : float > 0
-        The reported box's width and height are then multiplied by this
-        factor, about the same centre (:func:`smtmvt.geometry.box_scaled`);
-        as with ``report_aspect`` the tracking is the same whatever the
-        value. The state's box is smaller than the truth on most sequences
-        (the coded residual is flat below the true size and steep above it,
-        docs/experiments.md#n42): over the 29 sequences of ``bench/sweep.py``, seeds 0-2,
-        the median over sequences of each one's median log size ratio on
-        tracked frames is -0.026. Default 1.03, that bias undone
-        (``exp(0.026)`` rounded; docs/experiments.md#n45). 1: the state's size (the paper).
-    velocity : float
-        Constant-velocity term of the motion model: every particle is first
-        moved by ``velocity`` times the last frame's displacement of the
-        chosen box (0: a pure random walk, as L1-APG and MTT). Default 0.5
-        (measured in the table of docs/experiments.md; 0.25 gave 0.568 against 0.593, Shaking
-        0.64 -> 0.35 and Subway 0.64 -> 0.49, Walking2 0.34 -> 0.46; 0.75 gave
-        0.572, Shaking 0.64 -> 0.48, Subway 0.64 -> 0.47, David 0.68 -> 0.57,
-        Walking2 0.34 -> 0.50).
+        Reported box's sides times this; default 1.03, 1 the paper (docs/experiments.md#n45, #f-report_scale).
+    velocity : float in [0, 1]
+        Share of the last displacement added to each particle; default 0.5 (docs/experiments.md#n7, #f-velocity).
     velocity_fraction : float in [0, 1]
-        Fraction of the particles moved by the velocity term, spread evenly
-        over the particle indices (resampled copies of one particle are
-        adjacent, so each keeps both hypotheses); the others follow the pure
-        random walk. 1: all (a constant-velocity model), the default; 0.5
-        measured in the table of docs/experiments.md (0.534 against 0.593).
+        Share of the particles the velocity term moves; default 1 (docs/experiments.md#n10, #f-velocity_fraction).
     search_expand : float >= 1
-        After a frame whose chosen candidate is explained worse than usual
-        (residual ``r`` above the median ``m`` of the residuals chosen so
-        far: the target occluded or lost), the next frame's translation std
-        is multiplied by ``clip(r / m, 1, search_expand)``, so that the
-        particles can reach a target that moved while the box stayed on the
-        background. 1: off (the paper), the default (3 measured in the table of
-        docs/experiments.md, docs/experiments.md#n14).
+        Most widening of the search after a bad frame; default 1, off (docs/experiments.md#n14, #f-search_expand).
     shape_pull : float in [0, 1]
-        Mean reversion of the particles' shape (aspect ratio and skew) toward
-        the first frame's box (:func:`smtmvt.motion.pull_shape`), applied
-        before the noise each frame; 0: a free random walk (the paper), the
-        default (0.05 and 0.02 measured in the table of docs/experiments.md, not kept).
+        Pull of the particles' shape to the first box's; default 0 (docs/experiments.md#n9, #f-shape_pull).
     background_weight : float >= 0
-        Weight ``beta`` of the background term (:mod:`smtmvt.background`):
-        each frame ``background_samples`` boxes of the target's size on a
-        ring around its predicted position are seen in the same views as the
-        candidates, and a candidate's likelihood is lowered by ``exp(-alpha
-        beta (b_max - b_i))``, ``b_i`` its residual over them (a candidate
-        like the surroundings, such as a similar object near the target,
-        loses). 0: the paper's likelihood, the default (0.15 and 0.5 measured
-        in the table of docs/experiments.md, not kept).
-    background_samples : int
-        Boxes on the background ring (used when ``background_weight`` > 0).
+        Weight of :mod:`smtmvt.background`'s term; default 0 (docs/experiments.md#n13, #f-background_weight).
+    background_samples : int >= 1
+        Boxes on the background ring; default 12.
     background_measure : str
-        ``b_i`` of the background term: ``"nearest"``, the squared distance
-        to the nearest ring box, or ``"nnls"``, the nonnegative least-squares
-        residual over them (:func:`smtmvt.background.background_residuals`).
+        The background term's ``b_i``: ``"nearest"`` (default) or ``"nnls"``.
     anchor_weight : float >= 0
-        Weight ``mu`` of the anchor term (:mod:`smtmvt.anchor`): each
-        candidate's residual in the likelihood gains ``mu`` times its
-        nonnegative least-squares residual over the first template alone (the
-        exact first-frame target), so that templates that drifted onto the
-        background cannot carry the box with them. Default 1 (measured in the
-        table of docs/experiments.md: 0.605 against 0.585 without, 6 seeds; 0.594 over 9,
-        where 0.5 gives 0.600, not told apart); 0: the paper's
-        likelihood.
+        Weight of :mod:`smtmvt.anchor`'s term; default 1, 0 the paper (docs/experiments.md#n11, #f-anchor_weight).
     foreground_weight : float >= 0
-        Weight ``nu`` of the foreground term (:mod:`smtmvt.foreground`): a
-        color model of the first frame (the box's colors against its
-        surroundings') scores each candidate box by its contrast ``c_i``, the
-        mean target probability inside it less that of the ring around it,
-        and its residual in the likelihood gains ``nu (1 - c_i)``: nothing
-        else in the likelihood says what the target is *not*. Default 1
-        (measured in the table of docs/experiments.md, docs/experiments.md#n16); 0: the paper's likelihood.
+        Weight of :mod:`smtmvt.foreground`'s term; default 1, 0 the paper (docs/experiments.md#n16,
+        #f-foreground_weight).
     correlation_weight : float >= 0
-        Weight ``rho`` of the correlation term (:mod:`smtmvt.correlation`): a
-        correlation filter over a window about the predicted box, learned from
-        the first box and updated from the chosen boxes (at
-        ``correlation_rate``, on the frames ``correlation_learn_gate``
-        passes), scores each candidate by its response ``r_i`` at the
-        candidate's centre, and its residual in the likelihood gains
-        ``rho (1 - r_i / r_max)`` (``r_max`` the response's peak over the
-        window). Default 0.5
-        (measured in the table of docs/experiments.md, docs/experiments.md#n32); 0: the paper's likelihood.
+        Weight of :mod:`smtmvt.correlation`'s term; default 0.5, 0 the paper (docs/experiments.md#n32,
+        #f-correlation_weight).
     correlation_particles : float in [0, 1]
-        Fraction of the particles placed, each frame, about the peak of the
-        correlation filter's response (:func:`smtmvt.motion.place`; the
-        peak cell's centre plus normal noise of half a cell's standard
-        deviation), after the random walk: a proposal from what the filter
-        sees instead of from the last frame's particles alone. They keep the
-        shape of the particles they replace (the last ones, where resampling
-        puts copies of the best) and are scored like every other particle,
-        motion term included. The filter is learned when this or
-        ``correlation_weight`` is above 0. Default 0.1, with
-        ``correlation_learn_gate`` (docs/experiments.md#n34); alone it gave the same mean
-        as 0 over 18 seeds, gaining on sequences without a look-alike and
-        losing where the filter's peak jumps to one (docs/experiments.md#n33). 0: the
-        paper's random walk.
+        Share of the particles placed at the filter's peak; default 0.1 (docs/experiments.md#n33, #n34,
+        #f-correlation_particles).
     correlation_learn_gate : (float, float), each >= 0
-        ``(b1, b2)``: the correlation filter learns from a frame's chosen box
-        only when that frame's response (over the window about the
-        prediction) is confident, its peak at least ``b1`` times and its
-        average peak-to-correlation energy at least ``b2`` times their means
-        over the frames before (LMCF's criterion, Wang et al., CVPR 2017, with
-        its values; :meth:`smtmvt.correlation.CorrelationFilter.confident`).
-        Default ``(0.7, 0.45)``, with ``correlation_particles`` 0.1 (docs/experiments.md#n34); ``(0, 0)``: it learns from every frame. (0.6, 0.4) and
-        (0.8, 0.5) measured worse on the mean (docs/experiments.md#n35).
+        The filter learns only where peak and APCE reach these times their means; default (0.7, 0.45)
+        (docs/experiments.md#n34, #n35, #f-correlation_learn_gate).
     template_learn_gate : (float, float), each >= 0
-        ``(b1, b2)``: the template update replaces no template on a frame
-        whose correlation response does not pass this gate: LMCF's test of
-        ``correlation_learn_gate``, with these factors, on the same response,
-        but against the means of the last ``template_learn_memory``
-        responses, and with the peak at least ``template_learn_floor`` times
-        its mean over all of them; so that a box the filter doubts, an
-        occluder or a look-alike, does not enter the dictionaries either. The
-        template weights are still updated. No effect without the filter
-        (``correlation_weight`` and ``correlation_particles`` 0). Default
-        ``(0.7, 0.45)``, the filter's factors (docs/experiments.md#n38); ``(0, 0)``: the
-        update's angle alone decides, as in the paper.
+        No template replaced where the response fails this gate; default (0.7, 0.45), (0, 0) the
+        paper (docs/experiments.md#n38, #f-template_learn_gate).
     template_learn_memory : int >= 0
-        How many responses before a frame's the template gate compares it
-        with (0: all of them, as the filter's gate). Default 20: against all
-        of them (stop 34) the gate refuses every frame once the response
-        weakens slowly (the demo's target growing and turning), and the
-        templates stop following the target (docs/experiments.md#n38).
+        Responses the template gate compares with, 0 all; default 20 (docs/experiments.md#n38,
+        #f-template_learn_memory).
     template_learn_floor : float >= 0
-        The template gate also wants the response's peak at least this
-        times its mean over all the frames before. Default 0.4: without it a
-        lost target's weak response becomes the recent norm and the
-        templates learn the background (Car4, docs/experiments.md#n38).
+        Least peak over its mean for the template gate; default 0.4 (docs/experiments.md#n38,
+        #f-template_learn_floor).
     correlation_rate : float in (0, 1]
-        Rate at which the correlation filter blends in the filter trained on
-        a chosen box (:meth:`smtmvt.correlation.CorrelationFilter.update`):
-        the model becomes ``(1 - rate) model + rate new``. Default 0.02
-        (KCF's); 0.04 and 0.01 measured worse on the mean (docs/experiments.md#n35).
+        The filter's learning rate; default 0.02 (docs/experiments.md#n35, #f-correlation_rate).
     correlation_first : float in [0, 1]
-        Share of the first box's filter in the correlation filter's
-        response: the response (its term, the peak where particles are
-        placed, the learn gate's test) is ``1 - first`` times the learned
-        model's plus ``first`` times that of the filter trained on the first
-        box and never updated (:meth:`smtmvt.correlation.CorrelationFilter.response`),
-        as the anchor term keeps the first template in the likelihood. 0:
-        the learned model alone, the default (0.3 measured the same over 18
-        seeds, 0.5 lower; docs/experiments.md#n36).
+        Share of the first box's filter in the response; default 0 (docs/experiments.md#n36,
+        #f-correlation_first).
     redetect_after : int >= 0
-        A search beyond the random walk's reach once the target seems lost:
-        after this many frames in a row whose correlation response peaks
-        below ``template_learn_floor`` times its mean over the frames before,
-        the filter's response is also taken over the windows about the
-        prediction's moved by half and by one box size in the eight
-        directions, and about the last state the filter learned from; the
-        response over the window centred on their highest peak, where it
-        beats the prediction's and passes ``correlation_learn_gate`` against
-        the frames before, replaces the prediction's for the frame (its term,
-        and the particles placed at its peak, which then take no motion term;
-        the velocity restarts at 0). The templates and the filter learn from
-        that frame only if the chosen box is within half its size of that
-        peak. It only proposes: the likelihood still chooses. It needs the
-        responses judged (a learn gate above 0). Default 10 (docs/experiments.md#n40); 3
-        also recovered the lost seeds but jumped to the car that hides
-        Woman's legs; 0: off, the paper's search.
+        Weak-peak frames before a wider search; default 10, 0 off (docs/experiments.md#n40, #f-redetect_after).
     motion_weight : float >= 0
-        Weight ``w`` of the motion term: each particle's residual in the
-        likelihood gains ``w d_i / (2 alpha)``, ``d_i`` the squared length of
-        its own random-walk step in translation (from its parent moved by the
-        velocity term, in the walk's standard deviations at the parent's
-        scale: :func:`smtmvt.motion.translation_distance`), so that ``w = 1``
-        multiplies each particle's likelihood by the random walk's Gaussian
-        density of its step: the chosen particle is the most probable state
-        under the motion model and the views together, not the best explained
-        one wherever the search reached. A probe (``update_detailed``), which
-        has no parent, is measured from the last state moved by the velocity
-        term. Known before coding, like the anchor term. Default 1 (docs/experiments.md#n27: 0.628 against 0.618 without, 18 sequences x 18 seeds); 0: the
-        paper's choice. The std is the frame's (widened by
-        ``search_expand`` when it is); ``narrow_scale`` is not applied.
+        Weight of the random walk's density; default 1, 0 the paper (docs/experiments.md#n27, #f-motion_weight).
     scale_push : float >= 0
-        Weight ``beta`` of the scale term: each candidate's residual gains
-        ``-beta log(s_i / s)``, ``s_i`` its box's size ``sqrt(w h)`` and ``s``
-        the last state's, so that of two candidates that the views explain
-        about as well the larger wins (the box otherwise shrinks: a box
-        inside the target costs the views little, one that takes in
-        background much). Default 0 (off): 0.2 measured no better over 9
-        seeds (docs/experiments.md#n42).
+        Weight of ``-log(s_i / s)`` (larger boxes); default 0 (docs/experiments.md#n42, #f-scale_push).
     scale_filter : float in [0, 1]
-        Share of the way (in log) the chosen state's scale moves to the scale
-        filter's estimate (:mod:`smtmvt.scale`, DSST's one-dimensional filter
-        over scales at the chosen centre); the particle cloud moves with it.
-        The filter learns on the frames the correlation filter learns from.
-        Default 0 (off): 0.5 measured 0.682 against 0.693 on the 18 (docs/experiments.md#n43).
+        Share of the way to :mod:`smtmvt.scale`'s size; default 0 (docs/experiments.md#n43, #f-scale_filter).
     term_views : tuple of str
-        The views the anchor and background terms compare (those of ``views``
-        among them; a term with none of them is 0). Default intensity, color
-        and HOG, as measured. The background term needs them for every
-        candidate: while it is on, they are computed for every candidate
-        even when in ``deferred_views``; the anchor term is a sum over its
-        views, so a deferred one adds its part where it is computed (the
-        candidates without it keep a lower bound of the term, as of their
-        residual).
-    feature_size : (int, int)
-        Height, width (pixels) to which each candidate is warped for the HOG,
-        LBP and color views.
-    intensity_factor : float or None
-        Intensity template pixels per first-box pixel
-        (:func:`smtmvt.features.intensity_template_size`). None: the paper's
-        rule, a third of the box, a half when its shorter side is under 20
-        pixels (the default). A larger template is sampled with a smaller
-        step, so the anti-aliasing blur is smaller too; its cost grows with
-        its area (0.5 on FaceOcc1's 114x162 box: 2.25 times the dimensions,
-        a third fewer frames a second). Measured in docs/experiments.md#n21.
+        Views of the anchor and background terms; default intensity, color, HOG (docs/experiments.md#f-term_views).
+    feature_size : (int, int), each >= 8
+        Height, width (pixels) of the HOG, LBP and color patches; default (32, 32).
+    intensity_factor : float > 0 or None
+        Intensity template px per box px; None (default): the paper's (docs/experiments.md#n21,
+        #f-intensity_factor).
     color_size : (int, int) or None
-        Height, width (pixels) of the color view's patches when they differ
-        from ``feature_size`` (a histogram needs fewer samples than HOG
-        and LBP need pixels; the anti-aliasing blur follows the coarser
-        step). None: ``feature_size``, the default (16x16 measured in the
-        table of docs/experiments.md, not kept).
+        Color patches' height, width; None (default): ``feature_size`` (docs/experiments.md#n12,
+        #f-color_size).
     model : str
-        Observation model, a key of :data:`smtmvt.solvers.SOLVERS`: ``"smtmvt"``
-        (the paper's, default) or one of the comparison models of the paper's
-        table, ``"l1t"``, ``"mtt"``, ``"mtmvt-ls"``, ``"mtmvt-lad"``, run in the
-        same particle filter with their solvers' default weights (L1T and MTT
-        are single-view: use them with ``views=("intensity",)``).
+        A key of :data:`smtmvt.solvers.SOLVERS`: ``"smtmvt"`` (default) or a comparison model
+        (docs/experiments.md#f-model).
     solver : str
         Method of the SMTMVT solver: ``"admm"`` (exact ADMM, converges to the optimum; default)
         or ``"paper"`` (the paper's subgradient step).
-    solver_tol : float
-        Relative change of the iterates at which the solver stops.
-    solver_max_iter : int
-        Iteration cap of the solver inside the tracker.
+    solver_tol : float > 0
+        Relative change of the iterates at which the solver stops; default 1e-3 (docs/experiments.md#n12).
+    solver_max_iter : int >= 1
+        Iteration cap of the solver inside the tracker; default 200.
     update_angle : float
-        Template update trigger, degrees, on the intensity view (see
-        :mod:`smtmvt.templates`). L1-APG's OTB wrapper uses 30 on raw
-        intensities; on Tan-Triggs intensities a well-tracked target already
-        sits at 35-60 degrees from its templates (measured on Subway,
-        Crossing, Girl, CarDark), so 30 replaced a template nearly every
-        frame and drifted. Mean overlap on the six sequences above: 30 -> 0.47,
-        45 -> 0.50, 60 -> 0.61, never updating -> 0.60 (all with translation
-        std 4). With the current views, on the 18 sequences over 3 seeds: 50
-        -> 0.537 against 0.593 for 60 (Basketball 0.47 -> 0.18, Shaking 0.64
-        -> 0.34; Walking2 0.34 -> 0.61); 70 -> 0.511 (Basketball 0.47 -> 0.05,
-        Subway 0.64 -> 0.17, David 0.68 -> 0.36; Singer2 0.45 -> 0.65).
-    update_margin : float or None
-        None: the trigger is ``update_angle``. A number: ``update_angle`` on
-        the first 10 frames, then the median of those frames' angles plus
-        ``update_margin`` degrees where that is lower (first-10 medians: 7 on
-        Freeman1, 11 on Dog1, 18 on CarDark, 50-57 on Basketball, Bolt and
-        Shaking, which a higher trigger lost, 70: see ``update_angle``): the angle of a well-tracked target to its
-        templates depends on its texture and size (median 51 degrees on
-        Basketball's first 300 frames, 38 on CarDark's), so a fixed trigger
-        replaced a template every 4-5 frames on Basketball, Singer2 and
-        Soccer and none in 250 frames on CarDark, Dog1 and Freeman1. docs/experiments.md#n28: 20 gives 0.623 against 0.623 over 12 seeds (CarDark 0.59 ->
-        0.67, Freeman1 0.45 -> 0.49; Football 0.65 -> 0.61, Dog1 0.74 ->
-        0.72, Soccer 0.30 -> 0.26).
-    fixed_templates : int
-        The first ``fixed_templates`` templates (the first frame's target and
-        its jittered copies) are never replaced; L1T keeps only the first.
-        Not yet measured on the 18 sequences.
+        Template update trigger, degrees, intensity view; default 60 (docs/experiments.md#f-update_angle).
+    update_margin : float >= 0 or None
+        A number: trigger at the first 10 frames' median plus this; None (default): ``update_angle``
+        (docs/experiments.md#n28, #f-update_margin).
+    fixed_templates : int in [1, n_templates]
+        The first templates, never replaced (L1T keeps only the first); default 1.
     anchor_cos : float
-        Drift check of the template update: the best candidate replaces a
-        template only when its mean cosine over the views with the first
-        template (the exact initial target) is at least ``anchor_cos``; -1
-        disables the check (the paper, L1T). 0.3 measured on the 18
-        sequences over 3 seeds: 0.586 against 0.593 (1597 replacements
-        instead of 1761; David 0.68 -> 0.61, Singer2 0.45 -> 0.35); kept at -1.
-    view_weights : tuple of float or None
-        One weight per view (in ``views`` order) on its squared residual, in
-        the coding and in the likelihood: each view's candidates and templates
-        are scaled by ``sqrt(weight)`` there (the template update still sees
-        the unit-norm views). None weighs all views 1 (the paper). Measured on
-        the 18 sequences in the table of docs/experiments.md (not kept).
+        Least mean cosine to the first template for an update; -1 (default): off
+        (docs/experiments.md#f-anchor_cos).
+    view_weights : tuple of float > 0 or None
+        Weights of the views' residuals; None (default): all 1 (docs/experiments.md#n1, #f-view_weights).
     occlusion_fraction : float
-        Fraction of the intensity template flagged by E above which the frame
-        is treated as occluded and no template is replaced (L1-APG: 0.25).
-    prune_eps : float
-        Bounded coding (:func:`smtmvt.likelihood.observe`, SMTMVT's model only:
-        the comparison models code every candidate): the candidates left
-        uncoded have likelihood bounds summing to at most ``prune_eps`` times
-        the best candidate's likelihood. The chosen box is the same as when
-        coding all of them; the sum of the resampling weights changes by a
-        relative ``prune_eps`` at most. 0 codes every candidate. The tracker
-        uses ``min(prune_eps, 0.5 / n_particles)``, so that no skipped particle
-        would have been copied by the resampling.
+        Fraction of the intensity template flagged by E above which the frame is treated as
+        occluded and no template is replaced (L1-APG: 0.25).
+    prune_eps : float in [0, 1)
+        Bounded coding's tolerance, 0 codes all; default 1e-3 (docs/experiments.md#f-prune_eps).
     frame_size : (int, int) or None
-        Track on frames resized to ``(width, height)`` pixels (the paper resized
-        every frame to 320x240); boxes are mapped back to the input frame.
-        None: track at the input size.
+        Track on frames resized to ``(width, height)`` (the paper: 320x240); None (default): as given.
     scale_normalize : bool
-        Each frame, compute the planes (Tan-Triggs, gray, color) on the frame
-        resized so that the target has its initial size in pixels (the
-        factor is the initial over the current target scale, within [1/4, 4]).
-        Tan-Triggs is a band-pass filter of fixed size in pixels, so without
-        this a grown target's views drift away from its first templates,
-        and a box smaller than the target matches them better (the demo's
-        scale change). False: the planes of the working frame itself (the paper).
+        Planes at the target's first size; default True (docs/experiments.md#f-scale_normalize).
     crop_planes : bool
-        Compute each frame's planes (gray, color, Tan-Triggs) only where the
-        frame's candidates read them (the particles' extent grown by the
-        smoothing's reach, :func:`smtmvt.preprocess.plane_window`). The cost
-        of a frame then follows the search region, not the frame size.
-        Tan-Triggs' contrast equalization takes its statistics as
-        ``crop_refresh`` says. True, the default, with ``crop_refresh`` 10
-        (stop 18, docs/experiments.md#n20: as accurate as whole planes over 9 seeds, 0.614
-        against 0.615, and on Crossing 0.92-0.99 of CSRT's speed against
-        0.70-0.79). False: whole frames (the paper). Forced off while
-        ``background_weight`` > 0 (the ring reads farther).
+        Planes on the candidates' window only; default True (docs/experiments.md#n20, #f-crop_planes).
     crop_context : float >= 1
-        With ``crop_refresh`` 0, Tan-Triggs takes its statistics over the
-        current box grown ``crop_context`` times about its centre (stop 15;
-        docs/experiments.md#n15 and #n19: it lost the demo's target on half the seeds).
+        Box growth for Tan-Triggs' statistics at ``crop_refresh`` 0; default 3 (docs/experiments.md#n15,
+        #f-crop_context).
     crop_refresh : int >= 0
-        With ``crop_planes``: k >= 1 computes the whole plane on the first
-        frame and on every k-th frame after it (as without ``crop_planes``)
-        and normalizes the crops of the frames between with that plane's two
-        contrast divisors (:func:`smtmvt.features.tan_triggs.tan_triggs_scales`),
-        so what the crop holds (an occluder entering the box's
-        surroundings, docs/experiments.md#n19) does not move the statistics; 1 is the
-        whole-plane tracker. 0: the statistics of ``crop_context``. Default 10.
-    antialias : float
-        Smooth each plane before sampling it on the patch grids, by a Gaussian
-        of ``antialias`` times the sampling step (target size over patch size,
-        :meth:`smtmvt.Tracker._views`); 0 samples the planes as they are (the
-        paper). Measured on 18 sequences: the sampled Tan-Triggs intensity of
-        the true box kept a cosine of 0.55 to the first template instead of
-        0.33 (a band-pass image sampled at a third of its resolution aliases),
-        and the mean average overlap rose from 0.455 to 0.504. Measured
-        again with today's default (stop 17, seeds 3-5): 0 gives 0.581
-        against 0.623, though CarDark alone gains 0.56 -> 0.82 (docs/experiments.md#n18);
-        1.5 gives 0.623 against 0.621 over 9 seeds and 2 gives 0.588 on seeds
-        0-2 (stop 20, docs/experiments.md#n24): 1 stays.
+        Frames between whole planes for Tan-Triggs' divisors; default 10 (docs/experiments.md#n20,
+        #f-crop_refresh).
+    antialias : float >= 0
+        Blur before sampling, in steps; default 1, 0 the paper (docs/experiments.md#n24, #f-antialias).
     intensity_plane : str
-        Plane the intensity view is sampled from: ``"tan_triggs"`` (the
-        paper, the default), ``"gray"`` (the gray frame; the view's
-        zero-mean, unit-norm columns as L1-APG's raw intensities) or ``"dog"``
-        (Tan-Triggs' gamma and difference of Gaussians at the template's
-        resolution: ``G(s) - G(2 s)`` of ``gray ** 0.2``, ``s`` the
-        anti-aliasing sigma, instead of the frame's ``G(1) - G(2)`` blurred by
-        ``s``, which leaves a narrow band between ``sqrt(1 + s^2)`` and ``sqrt(4
-        + s^2)``). docs/experiments.md#n28: "gray" 0.80 -> 0.06 on Car4, "dog" 0.632 against
-        0.636 (Walking2 0.37 -> 0.59; David 0.72 -> 0.56).
+        ``"tan_triggs"`` (default), ``"gray"`` or ``"dog"`` (docs/experiments.md#n28, #f-intensity_plane).
     hog_plane, lbp_plane : str
-        Plane the HOG and the LBP views are computed on: ``"tan_triggs"`` (the
-        paper: every view after the illumination normalization) or ``"gray"``
-        (the gray frame itself, default: both are normalized per cell or
-        block, and LBP is invariant to monotonic changes of the gray levels).
-    color_grid : int
-        Cells per side of the color view (:func:`smtmvt.features.color.color_view`);
-        1 is one histogram of the whole box. On 18 sequences a box shifted by
-        half its size matched the first template as well as the true box
-        with one histogram (cosines 0.87 and 0.87), better with 4x4 cells
-        (0.63 against 0.71). Default 2 (measured in the table of docs/experiments.md, as 3; the
-        paper: 1).
-    lbp_radius : float
-        Radius of the LBP view's neighbours, feature-patch pixels (1 as
-        skimage's default; 2 separated a shifted box better in the same
-        measurement; tracking with 2: 0.614 over 9 seeds, as the default,
-        docs/experiments.md#n21 and #n22).
-    histogram_power : float
-        The color and LBP histograms are raised to this power before the
-        views' normalization (0.5: the Hellinger embedding; 1: the
-        histograms, the paper). Default 0.5 (measured in the table of docs/experiments.md).
+        ``"tan_triggs"`` (the paper) or ``"gray"`` (default) (docs/experiments.md#f-hog_plane).
+    color_grid : int >= 1
+        Cells per side of the color view; default 2, 1 the paper (docs/experiments.md#n3, #f-color_grid).
+    lbp_radius : float > 0
+        LBP neighbours' radius, patch px; default 1 (docs/experiments.md#n21, #n22, #f-lbp_radius).
+    histogram_power : float > 0
+        Power of the color and LBP histograms; default 0.5, 1 the paper (docs/experiments.md#n6).
     deferred_views : tuple of str
-        Views computed only for the candidates whose likelihood bound cannot
-        be settled without them (:func:`smtmvt.likelihood.observe`, "deferred
-        views"): those of them that end ``views``, each computed in turn for
-        the candidates that still need it. Default the coarse view, HOG, then
-        LBP (docs/experiments.md#n29: the coarse view is computed for a median 226 of the
-        400 candidates on Crossing, with the boxes of computing it for all;
-        before it, docs/experiments.md#n26:
-        on Crossing HOG is computed for about 60-140 of the 400 candidates,
-        LBP for about 16; the frame 13-16% faster than with LBP alone, and
-        160 of the 162 runs of seeds 0-8 byte-identical). A speed setting: the chosen
-        box is the one computing every view would choose from the same
-        particles, and the likelihoods the resampling sees differ by the
-        bounded-coding rule's ``prune_eps`` at most. () computes every view of
-        every candidate. Used with SMTMVT's model and ``prune_eps`` > 0 only.
+        Views computed only where the bounds need them; default coarse, HOG, LBP
+        (docs/experiments.md#n26, #n29, #f-deferred_views).
     blas_threads : int or None
-        Threads the BLAS library may use inside :meth:`Tracker.init` and
-        :meth:`Tracker.update` (None: leave it alone). The per-frame matrices
-        are small (N = 10 templates), where BLAS threading costs more than it
-        gives: measured 8x slower with 2 threads on a loaded 2-core machine.
+        BLAS threads in the tracker, None: as set; default 1 (docs/experiments.md#f-blas_threads).
     seed : int or None
-        Seed of the particle filter's random generator; the same seed gives the
-        same boxes.
+        Seed of the particle filter's random generator; the same seed gives the same boxes.
     """
 
     lam: float = 0.1
