@@ -143,12 +143,12 @@ def test_features_read_any_frame_type_by_its_white():
 def test_config_checks_the_weight_and_the_paper_has_none():
     with pytest.raises(ValueError, match="correlation_weight"):
         TrackerConfig(correlation_weight=-1.0)
-    assert TrackerConfig().correlation_weight == 0.5  # the default (config note [32])
+    assert TrackerConfig().correlation_weight == 0.5  # the default (docs/experiments.md#n32)
     assert TrackerConfig.paper().correlation_weight == 0.0
     for bad in (-0.1, 1.5):
         with pytest.raises(ValueError, match="correlation_particles"):
             TrackerConfig(correlation_particles=bad)
-    assert TrackerConfig().correlation_particles == 0.1  # the default (config note [34])
+    assert TrackerConfig().correlation_particles == 0.1  # the default (docs/experiments.md#n34)
     assert TrackerConfig().correlation_learn_gate == (0.7, 0.45)
     assert TrackerConfig.paper().correlation_particles == 0.0
     # the filter is learned for either use

@@ -45,7 +45,7 @@ It helps where the target's look drifts from the templates or a similar
 object crosses it (Walking2, Bolt, Basketball, Freeman1), and costs where
 the filter, trained on the tracker's own choices, follows a box that slid
 off the target (Singer2): at weight 1 it cost as much as it gained, at 0.5
-it gains on the mean (``TrackerConfig``, note [32]).
+it gains on the mean (``docs/experiments.md#n32``).
 """
 
 from __future__ import annotations

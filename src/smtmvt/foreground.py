@@ -19,7 +19,7 @@ residual (``TrackerConfig.foreground_weight``), known before coding like the
 anchor term, so bounded coding stays exact
 (:func:`smtmvt.likelihood.observe`'s ``offset``). The model is the first
 frame's and is never updated: updated from the chosen box (DAT's rule) it
-measured no better (``TrackerConfig``, note [16]).
+measured no better (``docs/experiments.md#n16``).
 
 The views of a box compare it with the templates only, and a candidate that
 matches them about as well as the target (the lane markings and track

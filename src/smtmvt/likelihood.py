@@ -73,7 +73,7 @@ __all__ = ["likelihoods", "Observation", "observe", "FIRST_PASS"]
 #: 16 (stop 26): the rule's final set is a median of 4-8 candidates on Crossing,
 #: David and Basketball, so 16 coded twice the needed columns on most frames;
 #: 8 codes 26-40% fewer (a second, small batch on a fifth to a third of frames),
-#: with the same boxes (bench/README.md, stop 26).
+#: with the same boxes (docs/stops.md#stop26).
 FIRST_PASS = 8
 
 

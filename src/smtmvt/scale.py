@@ -4,7 +4,7 @@ The particles' likelihood judges scale poorly: a candidate a little smaller
 than the target is explained by the templates about as well as the target,
 one a little larger is not (part of it is background), so the random walk's
 steps down in scale are kept and its steps up refused, and the box shrinks
-(``TrackerConfig``, note [42]). DSST (Danelljan et al., BMVC 2014; the scale
+(``docs/experiments.md#n42``). DSST (Danelljan et al., BMVC 2014; the scale
 estimation of OpenCV's CSRT) judges scale apart from translation, with a
 filter that treats growth and shrinking alike: at the target's centre, the
 box grown and shrunk by ``STEP ** k`` (``k`` in ``-(N - 1) / 2 .. (N - 1) / 2``)

@@ -286,7 +286,7 @@ class Tracker:
             gray = remap_patches(smooth(frame.normalized, sig_f, win), X, Y) if self._needs_gray else None
             raw: np.ndarray | None
             # sampled together on a crop only: on a whole plane the whole-plane merge and
-            # smoothing output cost more than the 4-channel sampling saves (bench/README.md)
+            # smoothing output cost more than the 4-channel sampling saves (docs/stops.md#stop18)
             if self._needs_raw and cs == fs and sig_c == sig_f and frame.full_shape is not None:
                 color, raw = self._color_and_raw(frame, sig_f, win, X, Y)
             else:
@@ -304,7 +304,7 @@ class Tracker:
         its band-pass at the template's resolution instead of the frame's (the
         gray plane is floored at ``GAMMA_FLOOR``, 1e-4 as for the coarse view,
         before the gamma, unlike Tan-Triggs', so a black pixel becomes 0.16,
-        not 0; measured so in config note [28])."""
+        not 0; measured so in docs/experiments.md#n28)."""
         kind = self.config.intensity_plane
         if kind == "tan_triggs":
             return smooth(frame.normalized, sigma, win)

@@ -3,7 +3,7 @@
 Running (:mod:`.runner`, :mod:`.trackers`; where pairs run: :mod:`.workers`)::
 
     from smtmvt.evaluation import run_evaluation, available_trackers, register_tracker
-    run = run_evaluation("../shared/data/otb", ["smtmvt", "opencv-csrt"], "/tmp/run", workers=4)
+    run = run_evaluation("../shared/data/otb", ["smtmvt", "opencv-csrt"], "runs/example", workers=4)
 
 The run folder, every path in it, its lock and its settings: :class:`RunDir`
 (:mod:`.rundir`). Scoring (:mod:`.scoring`, :mod:`.metrics`), writing the report

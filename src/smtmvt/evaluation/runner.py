@@ -3,7 +3,7 @@
 Usage::
 
     from smtmvt.evaluation import run_evaluation
-    run = run_evaluation("../shared/data/otb", ["smtmvt", "opencv-csrt"], "/tmp/run",
+    run = run_evaluation("../shared/data/otb", ["smtmvt", "opencv-csrt"], "runs/example",
                          workers=4)                       # or scheduler="tcp://host:8786"
     run.ok, run.failed, run.report_dir
 
