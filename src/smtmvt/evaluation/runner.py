@@ -55,6 +55,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..interrupts import reraise_interruption
 from .pairs import PairOutcome, PairTask, describe, run_pair, sequence_seed
 from .progress import Progress
 from .rundir import RunDir, RunInfo
@@ -319,6 +320,7 @@ def _tracker_problem(run: RunDir, spec: TrackerSpec, options: dict) -> str | Non
         probe = {**options, "seed": 0} if accepts_keyword(spec.factory, "seed") else options
         spec.factory(**probe)
     except Exception as exc:  # noqa: BLE001 - any failure of the factory is the user's to see
+        reraise_interruption(exc)
         return f"{spec.name}: cannot be created with options {options}: {describe(exc)}"
     return None
 
@@ -380,4 +382,5 @@ def _make_report(result: RunResult, run: RunDir, attributes, published) -> None:
             run, attributes=attributes or None, published=published or None, repeat=result.repeat
         )
     except Exception as exc:  # noqa: BLE001 - the results are safe; say why the report failed
+        reraise_interruption(exc)
         result.report_error = describe(exc)

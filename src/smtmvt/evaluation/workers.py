@@ -22,6 +22,7 @@ import contextlib
 import multiprocessing
 import os
 import pickle
+import signal
 import subprocess
 import sys
 import threading
@@ -132,7 +133,10 @@ def _worker_environ() -> Iterator[None]:
 
 def _worker_main(conn, parent_pid: int) -> None:
     """A pool worker: run the tasks it receives until ``None`` or the pipe closes, sending
-    ``("frames", k)`` now and then and ``("done", outcome)`` after each task."""
+    ``("frames", k)`` now and then and ``("done", outcome)`` after each task. Ctrl-C, which
+    the terminal sends to the whole process group, is the driver's to handle (it ends its
+    workers): a worker ignores it, so that no pair is reported as failed by it."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     _killed_with_parent()
     exit_with_parent(parent_pid)
     while True:
