@@ -58,7 +58,7 @@ from pathlib import Path
 from ..interrupts import reraise_interruption
 from .pairs import PairOutcome, PairTask, describe, run_pair, sequence_seed
 from .progress import Progress
-from .rundir import RunDir, RunInfo
+from .rundir import MAX_REPEAT, RunDir, RunInfo
 from .trackers import TrackerSpec, UnknownTrackerError, accepts_keyword, tracker_spec
 from .workers import run_tasks
 
@@ -250,6 +250,8 @@ def _check_arguments(dataset_dir: Path, sequences, max_frames, workers, repeat) 
     for name, value in (("max_frames", max_frames), ("repeat", repeat)):
         if value is not None and (not isinstance(value, int) or value < 1):
             raise ValueError(f"{name} must be a whole number >= 1, got {value!r}")
+    if repeat is not None and repeat > MAX_REPEAT:
+        raise ValueError(f"repeat must be at most {MAX_REPEAT}, got {repeat!r}")
     if not isinstance(workers, int) or workers < 1:
         raise ValueError(f"workers must be >= 1, got {workers!r}")
     return sequences
