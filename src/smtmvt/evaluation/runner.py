@@ -274,7 +274,12 @@ class _Book:
     def finish(self, task: PairTask, outcome: PairOutcome | None, failure: str | None) -> None:
         name = task.sequence.name
         if outcome is not None and outcome.ok:
-            self.run.write_result(task.tracker, name, outcome.boxes, outcome.times, task.repeat)
+            try:
+                self.run.write_result(task.tracker, name, outcome.boxes, outcome.times, task.repeat)
+            except OSError as exc:  # this pair's files only (a name too long, ...): the rest go on
+                message = f"{task.tracker} on {name}: cannot write its result: {describe(exc)}"
+                self.record(task.tracker, name, message, task.repeat)
+                return
             self.log.clear(task.tracker, name, task.repeat)
             self.result.done.append(_pair_id(task.tracker, name, task.repeat))
             self.result.frames += task.n_frames
@@ -297,7 +302,12 @@ def _plan(book: _Book, known: list[TrackerSpec], seqs, tracker_options: dict, pa
         for seq in seqs:
             n = len(seq) if info.max_frames is None else min(len(seq), info.max_frames)
             for r in range(1 if spec.deterministic else info.repeat):
-                why = run.result_problem(spec.name, seq.name, n, r)
+                try:
+                    why = run.result_problem(spec.name, seq.name, n, r)
+                except OSError as exc:  # its result file cannot even be looked at (a name too long)
+                    message = f"{spec.name} on {seq.name}: cannot check its result file: {describe(exc)}"
+                    book.record(spec.name, seq.name, message, r)
+                    continue
                 if why is None:
                     result.skipped.append(_pair_id(spec.name, seq.name, r))
                     book.log.clear(spec.name, seq.name, r)
