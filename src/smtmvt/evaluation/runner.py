@@ -60,7 +60,7 @@ from .pairs import PairOutcome, PairTask, describe, run_pair, sequence_seed
 from .progress import Progress
 from .rundir import MAX_REPEAT, RunDir, RunInfo
 from .trackers import TrackerSpec, UnknownTrackerError, accepts_keyword, tracker_spec
-from .workers import run_tasks
+from .workers import probe_scheduler, run_tasks
 
 __all__ = [
     "run_evaluation",
@@ -205,6 +205,8 @@ def run_evaluation(
     sequences = _check_arguments(dataset_dir, sequences, max_frames, workers, repeat)
     tracker_options = dict(tracker_options or {})
     known, unknown = _resolve_trackers(trackers, tracker_options)
+    if isinstance(scheduler, str):
+        probe_scheduler(scheduler)  # a wrong address fails in seconds, before the run folder is touched
     run = RunDir(out_dir)
     with run.locked("smtmvt evaluate", create=True):
         seqs, seq_errors, unknown_seqs = _open_sequences(dataset_dir, sequences)
