@@ -279,8 +279,8 @@ class _Book:
             try:
                 self.run.write_result(task.tracker, name, outcome.boxes, outcome.times, task.repeat)
             except OSError as exc:  # this pair's files only (a name too long, ...): the rest go on
-                message = f"{task.tracker} on {name}: cannot write its result: {describe(exc)}"
-                self.record(task.tracker, name, message, task.repeat)
+                why = f"{task.tracker} on {name}: cannot write its result: {describe(exc)}"
+                self.record(task.tracker, name, why, task.repeat)
                 return
             self.log.clear(task.tracker, name, task.repeat)
             self.result.done.append(_pair_id(task.tracker, name, task.repeat))
