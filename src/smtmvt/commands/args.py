@@ -34,7 +34,9 @@ def bounded_int(low: int, high: int):
             value = int(text)
         except ValueError:
             value = low - 1
-        if not low <= value <= high:
+        if value < low:  # the message of positive_int for low = 1
+            raise argparse.ArgumentTypeError(f"expected a whole number >= {low}, got {text!r}")
+        if value > high:
             raise argparse.ArgumentTypeError(f"expected a whole number from {low} to {high}, got {text!r}")
         return value
 
