@@ -8,12 +8,12 @@ them into one argparse parser. A sub-command module exposes
 from __future__ import annotations
 
 import argparse
-import contextlib
 import signal
 import sys
-import threading
 
-__all__ = ["main", "build_parser"]
+from .interrupts import Terminated, interruption, signals_as_interrupts
+
+__all__ = ["main", "build_parser", "Terminated"]
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -35,28 +35,6 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-class Terminated(KeyboardInterrupt):
-    """SIGTERM, raised in the main thread so that a command stops as it does on Ctrl-C:
-    ``finally`` blocks run, worker processes are ended, nothing partial is written."""
-
-    signum = signal.SIGTERM
-
-
-@contextlib.contextmanager
-def _sigterm_as_interrupt():
-    def handler(signum, frame):
-        raise Terminated()
-
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = signal.signal(signal.SIGTERM, handler)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
-
-
 def main(argv=None) -> int:
     """Run one sub-command. Exit status: its own (0, or 1 for partial failures), 2 for bad
     input (one ``error:`` line), 130 after Ctrl-C, 143 after SIGTERM."""
@@ -64,17 +42,30 @@ def main(argv=None) -> int:
 
     parser = build_parser()
     args = parser.parse_args(join_negative_values(list(sys.argv[1:] if argv is None else argv)))
-    try:
-        with _sigterm_as_interrupt():
+    with signals_as_interrupts():  # inside: a signal received is known to interruption()
+        try:
             return int(args.func(args) or 0)
-    except KeyboardInterrupt as exc:
-        terminated = isinstance(exc, Terminated)
+        except BaseException as exc:
+            status = _failure_status(args.command, exc)
+            if status is None:
+                raise  # a bug: its traceback is wanted
+            return status
+
+
+def _failure_status(command: str, exc: BaseException) -> int | None:
+    """Exit status of a command stopped by ``exc``, after one line on stderr: 130 / 143 for
+    Ctrl-C / SIGTERM (also when compiled code wrapped them in another exception), 2 for bad
+    input; None for any other exception."""
+    stop = interruption(exc)
+    if stop is not None:
+        terminated = isinstance(stop, Terminated)
         print("terminated" if terminated else "interrupted", file=sys.stderr)
         return 128 + (signal.SIGTERM if terminated else signal.SIGINT)
-    except (ValueError, FileNotFoundError, OSError) as exc:
+    if isinstance(exc, (ValueError, OSError)):
         # Bad input: one clear line naming the file / frame / value at fault.
-        print(f"smtmvt {args.command}: error: {exc}", file=sys.stderr)
+        print(f"smtmvt {command}: error: {exc}", file=sys.stderr)
         return 2
+    return None
 
 
 if __name__ == "__main__":  # pragma: no cover

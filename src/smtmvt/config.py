@@ -33,7 +33,8 @@ field's "docs/experiments.md#nN" is the note [N] there.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+import numbers
+from dataclasses import dataclass, fields, replace
 from typing import Any
 
 from .solvers import SOLVERS
@@ -44,6 +45,60 @@ __all__ = ["TrackerConfig"]
 def _is_gate(gate) -> bool:
     """Whether ``gate`` is a learn gate's ``(b1, b2)``: two factors, each >= 0."""
     return len(gate) == 2 and all(0 <= g for g in gate)
+
+
+#: Whole-number fields and their bounds (inclusive). Beyond them a run only grows in memory
+#: and time (``n_particles=1e9`` grew to 24 GB); a float, even 200.0, is refused, never rounded.
+_WHOLE_NUMBERS = {
+    "n_particles": (1, 10_000),
+    "n_templates": (1, 100),
+    "background_samples": (1, 1_000),
+    "template_learn_memory": (0, 100_000),
+    "redetect_after": (0, 100_000),
+    "solver_max_iter": (1, 100_000),
+    "fixed_templates": (1, 100),
+    "crop_refresh": (0, 100_000),
+    "color_grid": (1, 16),
+    "blas_threads": (1, 1_024),
+}
+#: ``(a, b)`` pixel sizes: the bounds of each side (inclusive).
+_SIZES = {"feature_size": (8, 256), "color_size": (2, 256), "frame_size": (16, 8_192)}
+#: Tuples of real numbers (their lengths and signs are checked with the other fields).
+_NUMBER_TUPLES = ("affine_std", "correlation_learn_gate", "template_learn_gate")
+
+
+def _is_whole(value) -> bool:
+    return isinstance(value, numbers.Integral) and not isinstance(value, bool)
+
+
+def _is_finite(value) -> bool:
+    return isinstance(value, numbers.Real) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def _number_problem(config: TrackerConfig) -> tuple[str, str] | None:
+    """``(field, what it must be)`` for the first numeric field of ``config`` of the wrong
+    type or out of bounds; None when they all are fine. ``None`` passes where the field
+    allows it; the float fields must be finite numbers."""
+    for f in fields(config):
+        value = getattr(config, f.name)
+        if value is None and "None" in str(f.type):
+            continue
+        if f.name in _WHOLE_NUMBERS:
+            lo, hi = _WHOLE_NUMBERS[f.name]
+            if not (_is_whole(value) and lo <= value <= hi):
+                return f.name, f"a whole number from {lo} to {hi}"
+        elif f.name in _SIZES:
+            lo, hi = _SIZES[f.name]
+            if not (isinstance(value, (tuple, list)) and len(value) == 2 and all(_is_whole(v) for v in value)):
+                return f.name, "two whole numbers"
+            if not all(lo <= v <= hi for v in value):
+                return f.name, f"two whole numbers from {lo} to {hi}"
+        elif f.name in _NUMBER_TUPLES:
+            if not (isinstance(value, (tuple, list)) and all(_is_finite(v) for v in value)):
+                return f.name, "a tuple of finite numbers"
+        elif f.type in ("float", "float | None") and not _is_finite(value):
+            return f.name, "a finite number"
+    return None
 
 
 @dataclass(frozen=True)
@@ -61,8 +116,10 @@ class TrackerConfig:
         Weight of the L1 penalties on C and E (paper: 0.25).
     alpha : float > 0
         Likelihood sharpness, ``p = exp(-alpha * residual)`` (paper: 30).
-    n_particles : int >= 1
-        Number of particles / candidates per frame (paper: 400).
+    n_particles : int in [1, 10000]
+        Number of particles / candidates per frame (paper: 400). Every whole-number
+        field must be an int within its bounds (``_WHOLE_NUMBERS``, ``_SIZES``: a float
+        is refused, never rounded), every float field a finite number.
     n_templates : int >= 1
         Number of target templates N (paper: 10).
     views : tuple of str
@@ -272,6 +329,10 @@ class TrackerConfig:
     seed: int | None = 0
 
     def __post_init__(self):
+        problem = _number_problem(self)
+        if problem is not None:
+            name, expected = problem
+            raise ValueError(f"TrackerConfig: invalid {name}={getattr(self, name)!r}: expected {expected}")
         checks = {
             "lam": self.lam >= 0,
             "gamma": self.gamma >= 0,

@@ -7,7 +7,7 @@ import os
 import re
 from pathlib import Path
 
-__all__ = ["positive_int", "check_writable", "same_file", "join_negative_values"]
+__all__ = ["positive_int", "bounded_int", "check_writable", "same_file", "join_negative_values"]
 
 # an option value that starts with '-' but is numbers: "-5,10,20,20", "-5 10 20 20"
 _NEGATIVE_LIST = re.compile(r"-\d[\d.eE+-]*(?:[,\s]+[+-]?[\d.][\d.eE+-]*)+")
@@ -24,6 +24,24 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"expected a whole number >= 1, got {text!r}")
     return value
+
+
+def bounded_int(low: int, high: int):
+    """argparse type: a whole number from ``low`` to ``high`` (``--repeat``: 1 to 1000)."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            value = low - 1
+        if value < low:  # the message of positive_int for low = 1
+            raise argparse.ArgumentTypeError(f"expected a whole number >= {low}, got {text!r}")
+        if value > high:
+            raise argparse.ArgumentTypeError(f"expected a whole number from {low} to {high}, got {text!r}")
+        return value
+
+    parse.__name__ = f"whole number from {low} to {high}"
+    return parse
 
 
 def join_negative_values(argv: list[str], options=NUMBER_LIST_OPTIONS) -> list[str]:

@@ -118,6 +118,7 @@ def _track_all(tracker, seq, n, box0, sink, args):
     error says how far it got and that ``--out`` was not written."""
     from tqdm import tqdm
 
+    from ..interrupts import check_stop
     from ..tracker import track_frames
     from ..visualize import draw_box
 
@@ -135,6 +136,7 @@ def _track_all(tracker, seq, n, box0, sink, args):
                 sink.add(draw_box(img, box, (255, 0, 0), "smtmvt"))
             bar.update(1)
             bar.set_postfix(fps=f"{done / max(track_time, 1e-9):.1f}")
+            check_stop()  # a signal whose exception compiled code dropped
     except BaseException as exc:
         if sink is not None:
             sink.discard()

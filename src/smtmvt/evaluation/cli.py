@@ -27,7 +27,8 @@ import ast
 import sys
 from pathlib import Path
 
-from ..commands.args import positive_int
+from ..commands.args import bounded_int, positive_int
+from .rundir import MAX_REPEAT
 
 __all__ = ["add_parsers", "cmd_evaluate", "cmd_report", "parse_tracker_options"]
 
@@ -79,9 +80,9 @@ def _add_evaluate(subparsers) -> None:
     )
     add(
         "--repeat",
-        type=positive_int,
+        type=bounded_int(1, MAX_REPEAT),
         metavar="N",
-        help="run each stochastic tracker N times per sequence with N seeds (deterministic ones once); "
+        help=f"run each stochastic tracker N times per sequence with N seeds, N <= {MAX_REPEAT} (deterministic ones once); "
         "the report gives mean and std. Default: the run folder's count (1 for a new one)",
     )
     add("--overwrite", action="store_true", help="discard RUN_DIR's results if it was made with another --max-frames")
@@ -122,7 +123,12 @@ def _add_report(subparsers) -> None:
     )
     add("--benchmark", default="tb100", choices=["tb100", "cvpr13", "tb50"], help="published score set (default tb100)")
     add("--top", type=positive_int, default=10, metavar="N", help="curves per plot (default 10)")
-    add("--repeat", type=positive_int, metavar="N", help="report the first N repeats (default: all the run holds)")
+    add(
+        "--repeat",
+        type=bounded_int(1, MAX_REPEAT),
+        metavar="N",
+        help="report the first N repeats (default: all the run holds)",
+    )
     add(
         "--invalid",
         default="otb",

@@ -19,6 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from ..data import Sequence
+from ..interrupts import check_stop, reraise_interruption
 from .trackers import accepts_keyword
 
 __all__ = ["PairTask", "PairOutcome", "run_pair", "sequence_seed", "describe"]
@@ -96,6 +97,8 @@ class _Step:
 def run_pair(task: PairTask, on_frame: Callable[[int], None] | None = None) -> PairOutcome:
     """Run one tracker over one sequence (OPE). Never raises for bad data or a bad tracker:
     the failure is returned in ``PairOutcome.error``, naming tracker, sequence, frame and file.
+    Ctrl-C and SIGTERM are raised, never returned as a failure, even when compiled code
+    wrapped them in another exception (:mod:`smtmvt.interrupts`).
 
     ``on_frame(k)`` is called with the number of frames just done (for progress bars).
     """
@@ -120,8 +123,10 @@ def run_pair(task: PairTask, on_frame: Callable[[int], None] | None = None) -> P
         out.boxes, out.times = _track(tracker, seq, task.n_frames, step, on_frame)
         out.lost_frames = getattr(tracker, "lost_frames", None)
     except SequenceError as exc:  # names the file and the frame/line itself
+        reraise_interruption(exc)
         out.error = f"{task.tracker} on {out.sequence}: {exc}"
     except Exception as exc:  # noqa: BLE001 - one bad pair must never stop the run
+        reraise_interruption(exc)  # Ctrl-C / SIGTERM inside compiled code: a stop, not a failure
         out.error = _error_message(task, step, exc)
     out.wall = time.perf_counter() - t_start
     return out
@@ -135,6 +140,7 @@ def _track(tracker, seq, n: int, step: _Step, on_frame) -> tuple[np.ndarray, np.
     boxes = np.empty((n, 4), dtype=np.float64)
     times = np.empty(n, dtype=np.float64)
     for i in range(n):
+        check_stop()
         step.frame, step.what = i, "reading"
         frame = seq[i]
         step.what = "tracking"

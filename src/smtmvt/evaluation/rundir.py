@@ -57,6 +57,8 @@ REPORT = "report"
 IMPORT_JSON = "import.json"
 _TRACKER_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]*")
 _REPEAT_DIR = re.compile(r"repeat-([1-9][0-9]*)")
+#: the most repeats a run may hold (``--repeat``): each is a whole pass over the dataset
+MAX_REPEAT = 1000
 
 
 class RunDirError(ValueError):
@@ -121,6 +123,8 @@ class RunInfo:
             value = getattr(info, key)
             if value is not None and (not isinstance(value, int) or value < 1):
                 raise RunDirError(f"{path}: {key} must be a whole number >= 1, got {value!r}")
+        if info.repeat > MAX_REPEAT:
+            raise RunDirError(f"{path}: repeat must be at most {MAX_REPEAT}, got {info.repeat!r}")
         return info
 
     def to_json(self) -> dict:

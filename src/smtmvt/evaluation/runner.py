@@ -55,11 +55,12 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ..interrupts import reraise_interruption
 from .pairs import PairOutcome, PairTask, describe, run_pair, sequence_seed
 from .progress import Progress
-from .rundir import RunDir, RunInfo
+from .rundir import MAX_REPEAT, RunDir, RunInfo
 from .trackers import TrackerSpec, UnknownTrackerError, accepts_keyword, tracker_spec
-from .workers import run_tasks
+from .workers import probe_scheduler, run_tasks
 
 __all__ = [
     "run_evaluation",
@@ -204,6 +205,8 @@ def run_evaluation(
     sequences = _check_arguments(dataset_dir, sequences, max_frames, workers, repeat)
     tracker_options = dict(tracker_options or {})
     known, unknown = _resolve_trackers(trackers, tracker_options)
+    if isinstance(scheduler, str):
+        probe_scheduler(scheduler)  # a wrong address fails in seconds, before the run folder is touched
     run = RunDir(out_dir)
     with run.locked("smtmvt evaluate", create=True):
         seqs, seq_errors, unknown_seqs = _open_sequences(dataset_dir, sequences)
@@ -249,6 +252,8 @@ def _check_arguments(dataset_dir: Path, sequences, max_frames, workers, repeat) 
     for name, value in (("max_frames", max_frames), ("repeat", repeat)):
         if value is not None and (not isinstance(value, int) or value < 1):
             raise ValueError(f"{name} must be a whole number >= 1, got {value!r}")
+    if repeat is not None and repeat > MAX_REPEAT:
+        raise ValueError(f"repeat must be at most {MAX_REPEAT}, got {repeat!r}")
     if not isinstance(workers, int) or workers < 1:
         raise ValueError(f"workers must be >= 1, got {workers!r}")
     return sequences
@@ -271,7 +276,12 @@ class _Book:
     def finish(self, task: PairTask, outcome: PairOutcome | None, failure: str | None) -> None:
         name = task.sequence.name
         if outcome is not None and outcome.ok:
-            self.run.write_result(task.tracker, name, outcome.boxes, outcome.times, task.repeat)
+            try:
+                self.run.write_result(task.tracker, name, outcome.boxes, outcome.times, task.repeat)
+            except OSError as exc:  # this pair's files only (a name too long, ...): the rest go on
+                why = f"{task.tracker} on {name}: cannot write its result: {describe(exc)}"
+                self.record(task.tracker, name, why, task.repeat)
+                return
             self.log.clear(task.tracker, name, task.repeat)
             self.result.done.append(_pair_id(task.tracker, name, task.repeat))
             self.result.frames += task.n_frames
@@ -294,7 +304,12 @@ def _plan(book: _Book, known: list[TrackerSpec], seqs, tracker_options: dict, pa
         for seq in seqs:
             n = len(seq) if info.max_frames is None else min(len(seq), info.max_frames)
             for r in range(1 if spec.deterministic else info.repeat):
-                why = run.result_problem(spec.name, seq.name, n, r)
+                try:
+                    why = run.result_problem(spec.name, seq.name, n, r)
+                except OSError as exc:  # its result file cannot even be looked at (a name too long)
+                    message = f"{spec.name} on {seq.name}: cannot check its result file: {describe(exc)}"
+                    book.record(spec.name, seq.name, message, r)
+                    continue
                 if why is None:
                     result.skipped.append(_pair_id(spec.name, seq.name, r))
                     book.log.clear(spec.name, seq.name, r)
@@ -319,6 +334,7 @@ def _tracker_problem(run: RunDir, spec: TrackerSpec, options: dict) -> str | Non
         probe = {**options, "seed": 0} if accepts_keyword(spec.factory, "seed") else options
         spec.factory(**probe)
     except Exception as exc:  # noqa: BLE001 - any failure of the factory is the user's to see
+        reraise_interruption(exc)
         return f"{spec.name}: cannot be created with options {options}: {describe(exc)}"
     return None
 
@@ -380,4 +396,5 @@ def _make_report(result: RunResult, run: RunDir, attributes, published) -> None:
             run, attributes=attributes or None, published=published or None, repeat=result.repeat
         )
     except Exception as exc:  # noqa: BLE001 - the results are safe; say why the report failed
+        reraise_interruption(exc)
         result.report_error = describe(exc)

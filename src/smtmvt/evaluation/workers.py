@@ -22,6 +22,9 @@ import contextlib
 import multiprocessing
 import os
 import pickle
+import signal
+import socket
+import struct
 import subprocess
 import sys
 import threading
@@ -32,11 +35,14 @@ from multiprocessing.connection import wait
 
 from .pairs import PairOutcome, PairTask, describe, run_pair
 
-__all__ = ["execute", "run_tasks", "exit_with_parent", "WORKER_ENV"]
+__all__ = ["execute", "run_tasks", "exit_with_parent", "probe_scheduler", "WORKER_ENV"]
 
 #: Thread caps for worker processes (the same as Dask's nanny sets for its workers).
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
 _FRAME_REPORT_S = 0.5  # a pool worker reports frames done at most this often
+#: seconds a Dask scheduler's address has to accept a connection and greet it
+SCHEDULER_PROBE_S = 5.0
+_HANDSHAKE_MAX = 1 << 16  # bytes: a scheduler's greeting is about 60
 
 Finish = Callable[[PairTask, "PairOutcome | None", "str | None"], None]
 
@@ -132,7 +138,10 @@ def _worker_environ() -> Iterator[None]:
 
 def _worker_main(conn, parent_pid: int) -> None:
     """A pool worker: run the tasks it receives until ``None`` or the pipe closes, sending
-    ``("frames", k)`` now and then and ``("done", outcome)`` after each task."""
+    ``("frames", k)`` now and then and ``("done", outcome)`` after each task. Ctrl-C, which
+    the terminal sends to the whole process group, is the driver's to handle (it ends its
+    workers): a worker ignores it, so that no pair is reported as failed by it."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     _killed_with_parent()
     exit_with_parent(parent_pid)
     while True:
@@ -240,6 +249,64 @@ class _Pool:
 # --------------------------------------------------------------------------- Dask
 
 
+def probe_scheduler(address: str, timeout: float = SCHEDULER_PROBE_S) -> None:
+    """Check, within ``timeout`` seconds, that a Dask scheduler listens at ``address``
+    (``tcp://host:port`` or ``host:port``); ``OSError`` naming the address and what is
+    there otherwise (nothing, a server that says nothing, as an HTTP server, or one that
+    replies something else).
+
+    A Dask TCP server greets each connection at once with its handshake: an 8-byte length
+    (``struct`` ``"Q"``, as ``distributed.comm.tcp`` reads it), then msgpack frames naming
+    ``pickle-protocol``. ``distributed`` itself would wait forever for a silent server and
+    allocate whatever length a garbage reply gives. Other protocols (``tls://``, ...) are
+    left to ``distributed``.
+    """
+    try:
+        from distributed.comm.addressing import parse_address, parse_host_port
+    except ImportError as exc:  # pragma: no cover - optional dependency
+        raise ValueError("--scheduler needs dask.distributed (pip install 'smtmvt[distributed]')") from exc
+    try:
+        scheme, location = parse_address(address)
+        host, port = parse_host_port(location, default_port=8786) if scheme == "tcp" else ("", 0)
+    except ValueError as exc:
+        raise ValueError(f"--scheduler {address}: not an address like tcp://host:8786 ({exc})") from None
+    if scheme != "tcp":
+        return
+    try:
+        reply, why = _greeting(host, port, timeout)
+    except OSError as exc:  # refused, no route, unknown host: at once
+        raise OSError(f"cannot connect to the Dask scheduler at {address}: {exc.strerror or describe(exc)}") from None
+    if why is not None:
+        got = f"; it sent {reply[:24]!r}" if reply else ""
+        raise OSError(f"no Dask scheduler at {address}: {why}{got}")
+
+
+def _greeting(host: str, port: int, timeout: float) -> tuple[bytes, str | None]:
+    """The bytes a server at ``(host, port)`` sends first, and None when they are a Dask
+    handshake, else why not. ``OSError`` when no connection can be made."""
+    deadline = time.monotonic() + timeout
+    with socket.create_connection((host, port), timeout=timeout) as sock:
+        reply = b""
+        need = 8
+        while len(reply) < need:
+            sock.settimeout(max(deadline - time.monotonic(), 0.001))
+            try:
+                chunk = sock.recv(need - len(reply))
+            except TimeoutError:
+                return reply, f"no Dask handshake within {timeout:g} s (a scheduler greets at once)"
+            if not chunk:
+                return reply, "the connection was closed without a Dask handshake"
+            reply += chunk
+            if need == 8 and len(reply) == 8:
+                (length,) = struct.unpack("Q", reply)
+                if not 0 < length <= _HANDSHAKE_MAX:
+                    return reply, "the reply is not a Dask handshake"
+                need += length
+    if b"pickle-protocol" not in reply:
+        return reply, "the reply is not a Dask handshake"
+    return reply, None
+
+
 def _client_for(scheduler):
     try:
         import distributed
@@ -247,6 +314,7 @@ def _client_for(scheduler):
         raise ValueError("--scheduler needs dask.distributed (pip install 'smtmvt[distributed]')") from exc
     if isinstance(scheduler, distributed.Client):
         return scheduler, False
+    probe_scheduler(str(scheduler))
     try:
         # connect timeout: dask's distributed.comm.timeouts.connect (30 s by default)
         return distributed.Client(scheduler), True
