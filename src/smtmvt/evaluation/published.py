@@ -33,6 +33,7 @@ for matching everywhere.
 from __future__ import annotations
 
 import json
+import math
 import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
@@ -42,6 +43,7 @@ from typing import Any
 import numpy as np
 
 from ..data.attributes import ATTRIBUTE_NAMES, ATTRIBUTES, load_attributes
+from ..data.files import read_regular_bytes
 from ..data.names import canonical_name
 
 __all__ = [
@@ -312,25 +314,16 @@ def read_otb_mat(path, tracker: str | None = None, sequence: str | None = None) 
         fields = {n: rec[n] for n in rec.dtype.names}
         if "res" not in fields:
             raise ValueError(f"{path}: results struct has no 'res' field")
-        res = np.asarray(_unwrap(fields["res"]), dtype=np.float64)
         rtype = (
             str(np.asarray(_unwrap(fields.get("type", np.array(["rect"])))).ravel()[0]) if "type" in fields else "rect"
         )
-        if rtype == "rect":
-            boxes = res.reshape(-1, 4) if res.size else np.zeros((0, 4))
-        elif rtype == "ivtAff":
-            tmpl = np.asarray(_unwrap(fields.get("tmplsize")), dtype=np.float64).ravel()
-            if tmpl.size < 2:
-                raise ValueError(f"{path}: ivtAff result without tmplsize")
-            boxes = ivt_affine_to_rect(res, tmpl)
-        else:
-            raise ValueError(f"{path}: unsupported result type {rtype!r} (supported: rect, ivtAff)")
+        tmpl = _unwrap(fields.get("tmplsize"))
         return ImportedResult(
-            boxes=boxes,
+            boxes=_result_boxes(_unwrap(fields["res"]), rtype, tmpl, path),
             result_type=rtype,
             start_frame=_scalar(fields.get("startFrame"), int) if "startFrame" in fields else None,
             anno_begin=_scalar(fields.get("annoBegin"), int) if "annoBegin" in fields else None,
-            fps=_scalar(fields.get("fps"), float) if "fps" in fields else None,
+            fps=_fps(_scalar(fields["fps"], lambda v: v), path) if "fps" in fields else None,
             **common,
         )
     numeric = [
@@ -343,6 +336,69 @@ def read_otb_mat(path, tracker: str | None = None, sequence: str | None = None) 
     raise ValueError(f"{path}: no 'results' struct and no single (n, 4) array (variables: {', '.join(keys) or 'none'})")
 
 
+def _result_boxes(res, rtype, tmplsize, path) -> np.ndarray:
+    """1-based ``(n, 4)`` boxes of a result's ``res`` of type ``rtype`` (``rect`` rows, or
+    ``ivtAff`` affine rows with the template size ``tmplsize``). NaN (no box) is kept;
+    anything else that is not a finite number is a ValueError naming ``path``."""
+    try:
+        arr = np.asarray(res, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{path}: 'res' is not an array of numbers ({exc})") from None
+    if rtype not in ("rect", "ivtAff"):
+        raise ValueError(f"{path}: unsupported result type {rtype!r} (supported: rect, ivtAff)")
+    per_row = 4 if rtype == "rect" else 6
+    if arr.size % per_row:
+        raise ValueError(f"{path}: 'res' holds {arr.size} numbers, not rows of {per_row} ({rtype})")
+    if rtype == "rect":
+        boxes = arr.reshape(-1, 4)
+    else:
+        try:
+            tmpl = np.asarray(tmplsize, dtype=np.float64).ravel()
+        except (TypeError, ValueError):
+            tmpl = np.zeros(0)
+        if tmpl.size < 2 or not np.isfinite(tmpl[:2]).all():
+            raise ValueError(f"{path}: ivtAff result without a valid tmplsize (got {tmplsize!r})")
+        boxes = ivt_affine_to_rect(arr, tmpl)
+    bad = np.isinf(boxes).any(axis=1)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(f"{path}: 'res' row {i + 1} is not finite: {boxes[i].tolist()}")
+    return boxes
+
+
+def _fps(value, path) -> float | None:
+    """A result's frames per second: None when absent, else a finite number >= 0
+    (ValueError naming ``path`` otherwise)."""
+    if value is None:
+        return None
+    try:
+        fps = float(value) if not isinstance(value, (bool, np.bool_)) else math.nan
+    except (TypeError, ValueError):
+        fps = math.nan
+    if not (math.isfinite(fps) and fps >= 0):
+        raise ValueError(f"{path}: 'fps' must be a number of frames per second >= 0, got {_plain(value)!r}")
+    return fps
+
+
+def _frame_number(value, key: str, path) -> int | None:
+    """A 1-based frame number (``startFrame``): None when absent; ValueError naming ``path``
+    unless a whole number >= 1."""
+    if value is None:
+        return None
+    try:
+        number = float(value) if not isinstance(value, (bool, np.bool_)) else math.nan
+    except (TypeError, ValueError):
+        number = math.nan
+    if not (math.isfinite(number) and number.is_integer() and number >= 1):
+        raise ValueError(f"{path}: {key!r} must be a frame number >= 1, got {_plain(value)!r}")
+    return int(number)
+
+
+def _plain(value):
+    """``value`` as Python shows it (a numpy scalar read from a ``.mat`` file made plain)."""
+    return value.item() if isinstance(value, np.generic) else value
+
+
 def load_otb_mat(path) -> np.ndarray:
     """Boxes ``(m, 4)`` (1-based ``x, y, w, h``) of an OTB toolkit ``.mat`` result file."""
     return read_otb_mat(path).boxes
@@ -352,32 +408,26 @@ def read_otb_json(path, tracker: str | None = None) -> ImportedResult:
     """Read a tracker_benchmark per-frame result JSON (``OPE/<TRACKER>/<Seq>.json``)."""
     path = Path(path)
     try:
-        with open(path, encoding="utf-8") as fh:
-            data = json.load(fh)
-    except (OSError, ValueError) as exc:
+        data = json.loads(read_regular_bytes(path).decode("utf-8"))
+    except (OSError, ValueError) as exc:  # a FIFO is refused, not waited on
         raise ValueError(f"{path}: not a JSON result file ({exc})") from None
     rec = data[0] if isinstance(data, list) and data else data
     if not isinstance(rec, dict) or "res" not in rec:
         raise ValueError(f"{path}: no 'res' in this JSON (not a tracker_benchmark result file)")
-    rtype = rec.get("resType", "rect")
-    res = np.asarray(rec["res"], dtype=np.float64)
-    if rtype == "rect":
-        boxes = res.reshape(-1, 4)
-    elif rtype == "ivtAff":
-        boxes = ivt_affine_to_rect(res, rec.get("tmplsize", [32, 32]))
-    else:
-        raise ValueError(f"{path}: unsupported result type {rtype!r} (supported: rect, ivtAff)")
-    start = rec.get("startFrame")
+    for key in ("seqName", "tracker", "resType"):
+        if rec.get(key) is not None and not isinstance(rec[key], str):
+            raise ValueError(f"{path}: {key!r} must be a text, got {rec[key]!r}")
+    rtype = rec.get("resType") or "rect"
     return ImportedResult(
         tracker=tracker or rec.get("tracker") or path.parent.name,
         sequence=rec.get("seqName") or path.stem,
-        boxes=boxes,
+        boxes=_result_boxes(rec["res"], rtype, rec.get("tmplsize", [32, 32]), path),
         source=str(path),
         format="otb-json",
         result_type=rtype,
-        start_frame=int(start) if start is not None else None,
+        start_frame=_frame_number(rec.get("startFrame"), "startFrame", path),
         anno_begin=None,  # unknown in this format; resolved against the annotation length
-        fps=float(rec["fps"]) if rec.get("fps") is not None else None,
+        fps=_fps(rec.get("fps"), path),
     )
 
 
