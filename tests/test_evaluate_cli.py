@@ -391,3 +391,31 @@ def test_evaluate_numbers_must_be_positive(dataset, tmp_path, capsys, option, va
     assert info.value.code == 2
     assert f"{option}: expected a whole number >= 1, got {value!r}" in capsys.readouterr().err
     assert not (tmp_path / "r").exists()
+
+
+# ----------------------------------------------------------------------------- issue 46: smaller ones
+
+
+def test_a_fifo_in_place_of_a_result_file_hangs_nothing(dataset, tmp_path):
+    """A FIFO opened for reading waits for a writer forever: result and times files are
+    checked to be regular files first; the report names it, evaluate recomputes the pair."""
+    run_dir = tmp_path / "run"
+    args = ("--trackers", "opencv-kcf", "--sequences", "SquareA,SquareB")
+    assert subprocess.run(_cli(dataset, run_dir, *args), env=_env(), timeout=300).returncode == 0
+    result = run_dir / "results" / "opencv-kcf" / "SquareA.txt"
+    times = run_dir / "results" / "opencv-kcf" / "times" / "SquareB_time.txt"
+    for fifo in (result, times):
+        fifo.unlink()
+        os.mkfifo(fifo)
+    report = [sys.executable, "-m", "smtmvt.cli", "report", str(run_dir)]
+    done = subprocess.run(report, env=_env(), capture_output=True, text=True, timeout=120)
+    assert done.returncode == 1, done.stderr
+    expected = "opencv-kcf / SquareA: cannot read box file results/opencv-kcf/SquareA.txt: not a regular file (a FIFO)"
+    assert expected in done.stderr
+    summary = json.loads((run_dir / "report" / "summary.json").read_text())
+    assert list(summary["trackers"]["opencv-kcf"]["sequences"]) == ["SquareB"]
+    done = subprocess.run(_cli(dataset, run_dir, *args), env=_env(), capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert f"cannot read box file {result}: not a regular file (a FIFO); recomputing" in done.stdout
+    assert "1 pair(s) run" in done.stdout
+    assert result.is_file() and len(result.read_text().splitlines()) == 15

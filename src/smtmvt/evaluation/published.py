@@ -109,24 +109,23 @@ def read_box_file(path, ncols: int = 4) -> np.ndarray:
     """Read a text box file (one ``x,y,w,h`` row per line; comma, tab, space or ``;``).
 
     Blank lines are skipped. ``NaN`` is accepted. A malformed line raises ``ValueError`` naming
-    the file and the 1-based line number.
+    the file and the 1-based line number; a path that is not a regular file (a FIFO) raises
+    ``OSError`` at once.
     """
     path = Path(path)
     rows = []
-    with open(path, encoding="utf-8", errors="replace") as fh:
-        for lineno, line in enumerate(fh, 1):
-            text = line.strip()
-            if not text:
-                continue
-            parts = [p for p in _SPLIT.split(text) if p]
-            if len(parts) != ncols:
-                raise ValueError(
-                    f"{path}:{lineno}: expected {ncols} numbers (x,y,w,h), got {len(parts)}: {text[:60]!r}"
-                )
-            try:
-                rows.append([float(p) for p in parts])
-            except ValueError:
-                raise ValueError(f"{path}:{lineno}: not a number in {text[:60]!r}") from None
+    text = read_regular_bytes(path).decode("utf-8", errors="replace")
+    for lineno, line in enumerate(text.replace("\r\n", "\n").replace("\r", "\n").split("\n"), 1):
+        line = line.strip()
+        if not line:
+            continue
+        parts = [p for p in _SPLIT.split(line) if p]
+        if len(parts) != ncols:
+            raise ValueError(f"{path}:{lineno}: expected {ncols} numbers (x,y,w,h), got {len(parts)}: {line[:60]!r}")
+        try:
+            rows.append([float(p) for p in parts])
+        except ValueError:
+            raise ValueError(f"{path}:{lineno}: not a number in {line[:60]!r}") from None
     return np.asarray(rows, dtype=np.float64).reshape(-1, ncols)
 
 
