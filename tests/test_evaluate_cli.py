@@ -396,6 +396,28 @@ def test_evaluate_numbers_must_be_positive(dataset, tmp_path, capsys, option, va
 # ----------------------------------------------------------------------------- issue 46: smaller ones
 
 
+@pytest.mark.parametrize(
+    "content,what",
+    [
+        (b"SquareA\tIV\xff\n", "line 1: not a text file (undecodable byte)"),
+        (b"SquareA\tIV, XX\n", "line 1: unknown attribute code 'XX'"),
+    ],
+)
+def test_a_bad_attribute_table_is_refused_before_any_pair_runs(dataset, tmp_path, capsys, content, what):
+    bad = tmp_path / "attributes.txt"
+    bad.write_bytes(content)
+    run_dir = tmp_path / "run"
+    args = ("--trackers", "opencv-kcf", "--sequences", "SquareA", "--quiet")
+    assert evaluate_cli(dataset, run_dir, *args, "--attributes", str(bad)) == 2
+    err = capsys.readouterr().err
+    assert f"attribute table {bad} cannot be used (nothing was run): {bad}, {what}" in err
+    assert not run_dir.exists()  # nothing ran, nothing stored for later reports to trip on
+    assert evaluate_cli(dataset, run_dir, *args) == 0
+    assert "attributes" not in capsys.readouterr().err
+    assert json.loads((run_dir / "run.json").read_text())["attributes"] is None
+    assert main(["report", str(run_dir)]) == 0
+
+
 def test_a_fifo_in_place_of_a_result_file_hangs_nothing(dataset, tmp_path):
     """A FIFO opened for reading waits for a writer forever: result and times files are
     checked to be regular files first; the report names it, evaluate recomputes the pair."""

@@ -585,10 +585,27 @@ def load_attribute_table(source) -> dict[str, set[str]]:
     preference.
     """
     if isinstance(source, Mapping):
-        return {canonical_name(k): {a.strip().upper() for a in v} for k, v in source.items()}
+        return _attribute_mapping(source, "attribute table")
     path = Path(source)
     if not path.exists():
         raise FileNotFoundError(f"{path}: no such attribute file or folder")
-    if path.is_file() and path.suffix.lower() == ".json":
-        return load_attribute_table(json.loads(path.read_text(encoding="utf-8")))
+    if not path.is_dir() and path.suffix.lower() == ".json":
+        try:
+            data = json.loads(read_regular_bytes(path).decode("utf-8-sig"))
+        except (OSError, ValueError) as exc:  # a FIFO is refused, not waited on
+            raise ValueError(f"{path}: not a JSON attribute table ({exc})") from None
+        return _attribute_mapping(data, str(path))
     return {canonical_name(name): set(codes) for name, codes in load_attributes(path).items()}
+
+
+def _attribute_mapping(data, where: str) -> dict[str, set[str]]:
+    """``{canonical name: {codes}}`` of a mapping ``{sequence: [codes]}``; ValueError naming
+    ``where`` for anything else (a code list that is not a list of texts)."""
+    if not isinstance(data, Mapping):
+        raise ValueError(f"{where}: expected an object {{sequence: [attribute codes]}}, got {type(data).__name__}")
+    for name, codes in data.items():
+        if not isinstance(name, str) or isinstance(codes, str) or not isinstance(codes, (list, tuple, set, frozenset)):
+            raise ValueError(f"{where}: sequence {name!r}: expected a list of attribute codes, got {codes!r}")
+        if not all(isinstance(c, str) for c in codes):
+            raise ValueError(f"{where}: sequence {name!r}: attribute codes must be texts, got {codes!r}")
+    return {canonical_name(k): {a.strip().upper() for a in v} for k, v in data.items()}

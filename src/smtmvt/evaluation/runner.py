@@ -196,12 +196,13 @@ def run_evaluation(
     ------
     ValueError, OSError
         Only for problems with the whole run (no dataset folder, a run folder made for another
-        dataset or frame limit, a folder in use, no tracker given, unreachable scheduler);
-        everything per pair is recorded.
+        dataset or frame limit, a folder in use, no tracker given, unreachable scheduler, an
+        attribute table that cannot be read); everything per pair is recorded.
     """
     t_run = time.perf_counter()
     dataset_dir = Path(dataset_dir).expanduser().resolve()
     sequences = _check_arguments(dataset_dir, sequences, max_frames, workers, repeat)
+    _check_attributes(attributes)
     tracker_options = dict(tracker_options or {})
     known, unknown = _resolve_trackers(trackers, tracker_options)
     run = RunDir(out_dir)
@@ -252,6 +253,19 @@ def _check_arguments(dataset_dir: Path, sequences, max_frames, workers, repeat) 
     if not isinstance(workers, int) or workers < 1:
         raise ValueError(f"workers must be >= 1, got {workers!r}")
     return sequences
+
+
+def _check_attributes(attributes) -> None:
+    """Read the attribute table before anything runs: a bad one is an error of the whole
+    command (nothing is run, nothing stored in ``run.json`` for later reports to trip on)."""
+    if not attributes:
+        return
+    from .published import load_attribute_table
+
+    try:
+        load_attribute_table(attributes)
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"attribute table {attributes} cannot be used (nothing was run): {exc}") from None
 
 
 class _Book:
