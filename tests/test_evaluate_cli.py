@@ -418,6 +418,23 @@ def test_a_bad_attribute_table_is_refused_before_any_pair_runs(dataset, tmp_path
     assert main(["report", str(run_dir)]) == 0
 
 
+def test_an_absurd_first_box_is_refused_for_every_tracker(tmp_path, capsys):
+    """w = 1e308 is a finite number: OpenCV's trackers clipped it to the image and ran, and
+    the report scored them. Such a box is refused at init, as our tracker refuses it."""
+    root = make_otb_dataset(tmp_path / "otb", {"Huge": DEFAULT_SPECS["SquareA"]}, n_frames=6)
+    gt = root / "Huge" / "groundtruth_rect.txt"
+    lines = gt.read_text().splitlines()
+    gt.write_text("\n".join(["31,41,1e308,24", *lines[1:]]) + "\n")
+    run_dir = tmp_path / "run"
+    assert evaluate_cli(root, run_dir, "--trackers", "opencv-kcf,opencv-csrt", "--quiet") == 1
+    err = capsys.readouterr().err
+    for t in ("opencv-kcf", "opencv-csrt"):
+        assert f"{t}: initial box (30.0, 40.0, 1e+308, 24.0) is mostly outside the 160x120 image (0% inside)" in err
+        assert not (run_dir / "results" / t / "Huge.txt").exists()
+    summary = json.loads((run_dir / "report" / "summary.json").read_text())
+    assert all(e["auc"] is None for e in summary["trackers"].values())
+
+
 def test_a_fifo_in_place_of_a_result_file_hangs_nothing(dataset, tmp_path):
     """A FIFO opened for reading waits for a writer forever: result and times files are
     checked to be regular files first; the report names it, evaluate recomputes the pair."""
