@@ -435,6 +435,15 @@ def test_an_absurd_first_box_is_refused_for_every_tracker(tmp_path, capsys):
     assert all(e["auc"] is None for e in summary["trackers"].values())
 
 
+def test_report_on_a_run_with_no_tracker_fails_clearly(dataset, tmp_path, capsys):
+    run_dir = tmp_path / "run"
+    run_dir.mkdir()
+    (run_dir / "run.json").write_text(json.dumps({"dataset": str(dataset), "trackers": [], "sequences": ["SquareA"]}))
+    assert main(["report", str(run_dir)]) == 2
+    assert f"{run_dir}: no tracker to report" in capsys.readouterr().err
+    assert not (run_dir / "report").exists()
+
+
 def test_a_fifo_in_place_of_a_result_file_hangs_nothing(dataset, tmp_path):
     """A FIFO opened for reading waits for a writer forever: result and times files are
     checked to be regular files first; the report names it, evaluate recomputes the pair."""

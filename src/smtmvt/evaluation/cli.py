@@ -18,7 +18,7 @@
     adds foreign per-frame results (published trackers) to the run first. Exit status 0 when
     every pair was scored, 1 when the report has gaps (errors of the run, or result files
     that cannot be used; printed, and listed in the report), 2 when no report could be built
-    (for instance RUN_DIR is not a run folder).
+    (for instance RUN_DIR is not a run folder, or it has no tracker to report).
 """
 
 from __future__ import annotations
