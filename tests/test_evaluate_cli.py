@@ -418,6 +418,14 @@ def test_a_bad_attribute_table_is_refused_before_any_pair_runs(dataset, tmp_path
     assert main(["report", str(run_dir)]) == 0
 
 
+def test_the_cut_short_note_only_when_a_sequence_was_cut(dataset, tmp_path, capsys):
+    args = ("--trackers", "opencv-kcf", "--sequences", "SquareA,SquareB", "--no-report", "--quiet")
+    assert evaluate_cli(dataset, tmp_path / "long", *args, "--max-frames", "50") == 0
+    assert "cut short" not in capsys.readouterr().out  # 15 frames each: nothing was cut
+    assert evaluate_cli(dataset, tmp_path / "short", *args, "--max-frames", "6") == 0
+    assert "--max-frames 6: 2 sequence(s) cut short (SquareA, SquareB): not OTB-compliant" in capsys.readouterr().out
+
+
 def test_an_absurd_first_box_is_refused_for_every_tracker(tmp_path, capsys):
     """w = 1e308 is a finite number: OpenCV's trackers clipped it to the image and ran, and
     the report scored them. Such a box is refused at init, as our tracker refuses it."""

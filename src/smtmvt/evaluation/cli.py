@@ -212,8 +212,10 @@ def cmd_evaluate(args) -> int:
     )
     for note in run.notes:
         print(f"note: {note}")
-    if args.max_frames:
-        print(f"note: --max-frames {args.max_frames}: sequences were cut short (not OTB-compliant)")
+    if run.cut_short:  # only when some sequence is longer than the limit
+        names = ", ".join(run.cut_short[:5]) + (", ..." if len(run.cut_short) > 5 else "")
+        n_cut = len(run.cut_short)
+        print(f"note: --max-frames {args.max_frames}: {n_cut} sequence(s) cut short ({names}): not OTB-compliant")
     print(f"results: {run.run_dir / 'results'}")
     _print_errors(run.errors, run.run_dir)
     if args.no_report:

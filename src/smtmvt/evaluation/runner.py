@@ -106,6 +106,7 @@ class RunResult:
     errors : this call's errors, ``{"tracker", "sequence", "repeat", "error"}`` dicts (also
         in ``errors.json``, which keeps errors of pairs not part of this call).
     notes : remarks (result files recomputed and why, settings).
+    cut_short : the sequences longer than ``max_frames``, run on their first frames only.
     repeat : repeats used by this call.
     report : what ``build_report`` returned, or None; report_error : why it failed.
     """
@@ -117,6 +118,7 @@ class RunResult:
     skipped: list = field(default_factory=list)
     errors: list = field(default_factory=list)
     notes: list = field(default_factory=list)
+    cut_short: list = field(default_factory=list)
     frames: int = 0
     seconds: float = 0.0
     repeat: int = 1
@@ -222,6 +224,8 @@ def run_evaluation(
             overwrite=overwrite,
         )
         result = RunResult(run.root, [s.name for s in known], [s.name for s in seqs], notes=notes, repeat=info.repeat)
+        if info.max_frames is not None:
+            result.cut_short = [s.name for s in seqs if len(s) > info.max_frames]
         book = _Book(run, result, info)
         for name, message in unknown:
             book.record(name, None, message)
