@@ -436,3 +436,18 @@ def test_csv_numbers_stay_numbers_even_when_negative(run):
     lines = csv_table(summary).splitlines()
     assert next(line for line in lines if line.startswith("average,")).split(",")[1] == "-0.500000"
     assert next(line for line in lines if line.startswith("SeqA,")).split(",")[1] == "-0.250000"
+
+
+# ----------------------------------------------------------------------------- issue 46: the collision's own message
+
+
+def test_a_name_collision_is_reported_as_one_not_as_missing_ground_truth(run):
+    for name in ("Seq_1", "Seq-1"):
+        _add_sequence(run, name)
+    s = build_report(run["dir"], formats=("png",))
+    (row,) = [seq for seq in s["table_sequences"] if seq in ("Seq_1", "Seq-1")]  # one row: the names match
+    message = s["trackers"]["alpha"]["errors"][row]
+    assert "name collision: sequences 'Seq-1' and 'Seq_1' differ only in case or separators" in message
+    assert "rename one" in message and "no ground truth" not in message
+    md = (run["dir"] / "report" / "table.md").read_text()
+    assert f"- alpha / {row}: " in md and "no ground truth" not in md
