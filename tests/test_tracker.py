@@ -509,3 +509,17 @@ def test_dog_intensity_plane_against_scipy():
     ref = gaussian_filter(g, sigma, truncate=4.0) - gaussian_filter(g, 2 * sigma, truncate=4.0)
     inner = (slice(25, -25), slice(25, -25))
     np.testing.assert_allclose(plane[inner], ref[inner], atol=2e-4 * np.abs(ref[inner]).max())
+
+
+@pytest.mark.parametrize(
+    "box,shown",
+    [
+        (np.array([-40.0, -40.0, 50.0, 50.0]), "box (-40.0, -40.0, 50.0, 50.0) is mostly outside"),
+        (np.array([10.0, 10.0, 0.0, 20.0]), "box (10.0, 10.0, 0.0, 20.0) has zero or negative size"),
+        ((np.float64(1), np.nan, 3, 4), "got (1.0, nan, 3.0, 4.0)"),
+    ],
+)
+def test_box_errors_show_plain_numbers(demo, box, shown):
+    with pytest.raises(ValueError) as info:
+        Tracker(FAST).init(demo.frames[0], box)
+    assert shown in str(info.value) and "np." not in str(info.value)

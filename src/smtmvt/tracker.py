@@ -449,10 +449,11 @@ class Tracker:
 
     def _init(self, frame: np.ndarray, box) -> None:
         b = np.asarray(box, dtype=np.float64).reshape(-1)
+        shown = tuple(b.tolist())  # plain numbers in messages, not np.float64(...)
         if b.size != 4 or not np.all(np.isfinite(b)):
-            raise ValueError(f"init: box must be 4 finite numbers (x, y, w, h), got {box!r}")
+            raise ValueError(f"init: box must be 4 finite numbers (x, y, w, h), got {shown}")
         if b[2] <= 0 or b[3] <= 0:
-            raise ValueError(f"init: box {tuple(b)} has zero or negative size")
+            raise ValueError(f"init: box {shown} has zero or negative size")
         cfg = self.config
         # planes computed on the candidates' window only (the background ring reads farther)
         self._crop = bool(cfg.crop_planes and not cfg.background_weight)
@@ -470,7 +471,7 @@ class Tracker:
         inside = box_inside_fraction(wb, prepared.shape)
         if inside < 0.25:
             raise ValueError(
-                f"init: box {tuple(b)} is mostly outside the {shape[1]}x{shape[0]} image ({inside:.0%} inside)"
+                f"init: box {shown} is mostly outside the {shape[1]}x{shape[0]} image ({inside:.0%} inside)"
             )
         self.timings = defaultdict(float)
         # in the working frame, as the paper
