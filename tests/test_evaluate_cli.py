@@ -391,3 +391,87 @@ def test_evaluate_numbers_must_be_positive(dataset, tmp_path, capsys, option, va
     assert info.value.code == 2
     assert f"{option}: expected a whole number >= 1, got {value!r}" in capsys.readouterr().err
     assert not (tmp_path / "r").exists()
+
+
+# ----------------------------------------------------------------------------- issue 46: smaller ones
+
+
+@pytest.mark.parametrize(
+    "content,what",
+    [
+        (b"SquareA\tIV\xff\n", "line 1: not a text file (undecodable byte)"),
+        (b"SquareA\tIV, XX\n", "line 1: unknown attribute code 'XX'"),
+    ],
+)
+def test_a_bad_attribute_table_is_refused_before_any_pair_runs(dataset, tmp_path, capsys, content, what):
+    bad = tmp_path / "attributes.txt"
+    bad.write_bytes(content)
+    run_dir = tmp_path / "run"
+    args = ("--trackers", "opencv-kcf", "--sequences", "SquareA", "--quiet")
+    assert evaluate_cli(dataset, run_dir, *args, "--attributes", str(bad)) == 2
+    err = capsys.readouterr().err
+    assert f"attribute table {bad} cannot be used (nothing was run): {bad}, {what}" in err
+    assert not run_dir.exists()  # nothing ran, nothing stored for later reports to trip on
+    assert evaluate_cli(dataset, run_dir, *args) == 0
+    assert "attributes" not in capsys.readouterr().err
+    assert json.loads((run_dir / "run.json").read_text())["attributes"] is None
+    assert main(["report", str(run_dir)]) == 0
+
+
+def test_the_cut_short_note_only_when_a_sequence_was_cut(dataset, tmp_path, capsys):
+    args = ("--trackers", "opencv-kcf", "--sequences", "SquareA,SquareB", "--no-report", "--quiet")
+    assert evaluate_cli(dataset, tmp_path / "long", *args, "--max-frames", "50") == 0
+    assert "cut short" not in capsys.readouterr().out  # 15 frames each: nothing was cut
+    assert evaluate_cli(dataset, tmp_path / "short", *args, "--max-frames", "6") == 0
+    assert "--max-frames 6: 2 sequence(s) cut short (SquareA, SquareB): not OTB-compliant" in capsys.readouterr().out
+
+
+def test_an_absurd_first_box_is_refused_for_every_tracker(tmp_path, capsys):
+    """w = 1e308 is a finite number: OpenCV's trackers clipped it to the image and ran, and
+    the report scored them. Such a box is refused at init, as our tracker refuses it."""
+    root = make_otb_dataset(tmp_path / "otb", {"Huge": DEFAULT_SPECS["SquareA"]}, n_frames=6)
+    gt = root / "Huge" / "groundtruth_rect.txt"
+    lines = gt.read_text().splitlines()
+    gt.write_text("\n".join(["31,41,1e308,24", *lines[1:]]) + "\n")
+    run_dir = tmp_path / "run"
+    assert evaluate_cli(root, run_dir, "--trackers", "opencv-kcf,opencv-csrt", "--quiet") == 1
+    err = capsys.readouterr().err
+    for t in ("opencv-kcf", "opencv-csrt"):
+        assert f"{t}: initial box (30.0, 40.0, 1e+308, 24.0) is mostly outside the 160x120 image (0% inside)" in err
+        assert not (run_dir / "results" / t / "Huge.txt").exists()
+    summary = json.loads((run_dir / "report" / "summary.json").read_text())
+    assert all(e["auc"] is None for e in summary["trackers"].values())
+
+
+def test_report_on_a_run_with_no_tracker_fails_clearly(dataset, tmp_path, capsys):
+    run_dir = tmp_path / "run"
+    run_dir.mkdir()
+    (run_dir / "run.json").write_text(json.dumps({"dataset": str(dataset), "trackers": [], "sequences": ["SquareA"]}))
+    assert main(["report", str(run_dir)]) == 2
+    assert f"{run_dir}: no tracker to report" in capsys.readouterr().err
+    assert not (run_dir / "report").exists()
+
+
+def test_a_fifo_in_place_of_a_result_file_hangs_nothing(dataset, tmp_path):
+    """A FIFO opened for reading waits for a writer forever: result and times files are
+    checked to be regular files first; the report names it, evaluate recomputes the pair."""
+    run_dir = tmp_path / "run"
+    args = ("--trackers", "opencv-kcf", "--sequences", "SquareA,SquareB")
+    assert subprocess.run(_cli(dataset, run_dir, *args), env=_env(), timeout=300).returncode == 0
+    result = run_dir / "results" / "opencv-kcf" / "SquareA.txt"
+    times = run_dir / "results" / "opencv-kcf" / "times" / "SquareB_time.txt"
+    for fifo in (result, times):
+        fifo.unlink()
+        os.mkfifo(fifo)
+    report = [sys.executable, "-m", "smtmvt.cli", "report", str(run_dir)]
+    done = subprocess.run(report, env=_env(), capture_output=True, text=True, timeout=120)
+    assert done.returncode == 1, done.stderr
+    expected = "opencv-kcf / SquareA: cannot read box file results/opencv-kcf/SquareA.txt: not a regular file (a FIFO)"
+    assert expected in done.stderr
+    summary = json.loads((run_dir / "report" / "summary.json").read_text())
+    assert list(summary["trackers"]["opencv-kcf"]["sequences"]) == ["SquareB"]
+    done = subprocess.run(_cli(dataset, run_dir, *args), env=_env(), capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    assert f"cannot read box file {result}: not a regular file (a FIFO); recomputing" in done.stdout
+    assert "1 pair(s) run" in done.stdout
+    assert result.is_file() and len(result.read_text().splitlines()) == 15

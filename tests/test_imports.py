@@ -76,3 +76,69 @@ def test_an_import_never_replaces_results_the_run_computed(run_dir, tmp_path, ca
     assert evaluate_cli(dataset, run_dir, *KCF_ON_A_AND_B) == 0
     assert "0 pair(s) run" in capsys.readouterr().out
     assert (run_dir / "results" / "opencv-kcf" / "SquareA.txt").read_text() == ours
+
+
+# ----------------------------------------------------------------------------- issue 46: bad values, stale speed
+
+
+GOOD = {"res": [[31, 41, 28, 24]] * 12, "resType": "rect", "seqName": "SquareA", "fps": 20}
+
+
+@pytest.mark.parametrize(
+    "change,what",
+    [
+        ({"seqName": {"a": 1}}, "'seqName' must be a text"),
+        ({"seqName": ["SquareA"]}, "'seqName' must be a text"),
+        ({"res": [["x", 1, 2, 3]] * 12}, "'res' is not an array of numbers"),
+        ({"res": [[1, 2, 3, 4], [1, 2]]}, "'res' is not an array of numbers"),
+        ({"res": [1, 2, 3, 4, 5]}, "'res' holds 5 numbers, not rows of 4"),
+        ({"res": [[1, 2, 3, 4]] * 11 + [[1, 2, 1e999, 4]]}, "'res' row 12 is not finite"),
+        ({"fps": "fast"}, "'fps' must be a number of frames per second"),
+        ({"fps": -3}, "'fps' must be a number of frames per second"),
+        ({"fps": [20]}, "'fps' must be a number of frames per second"),
+        ({"startFrame": "first"}, "'startFrame' must be a frame number"),
+        ({"resType": ["rect"]}, "'resType' must be a text"),
+    ],
+)
+def test_a_malformed_json_result_is_an_error_naming_the_file(run_dir, tmp_path, capsys, change, what):
+    src = tmp_path / "OPE" / "BAD"
+    src.mkdir(parents=True)
+    path = src / "SquareA.json"
+    path.write_text(json.dumps([{**GOOD, **change}]))
+    before = _files(run_dir)
+    assert main(["report", str(run_dir), "--import", str(src)]) == 2
+    err = capsys.readouterr().err
+    assert f"error: {path}: {what}" in err, err
+    assert "Traceback" not in err
+    assert _files(run_dir) == before
+
+
+def test_a_malformed_mat_result_is_an_error_naming_the_file(run_dir, tmp_path, capsys):
+    from scipy.io import savemat
+
+    mats = tmp_path / "results_OPE"
+    mats.mkdir()
+    path = mats / "SquareA_BAD.mat"
+    savemat(path, {"results": [{"res": np.arange(10.0), "type": "rect", "fps": "fast"}]})
+    assert main(["report", str(run_dir), "--import", str(mats)]) == 2
+    assert f"error: {path}: 'res' holds 10 numbers, not rows of 4" in capsys.readouterr().err
+    savemat(path, {"results": [{"res": np.tile([31.0, 41, 28, 24], (12, 1)), "type": "rect", "fps": "fast"}]})
+    assert main(["report", str(run_dir), "--import", str(mats)]) == 2
+    assert f"error: {path}: 'fps' must be a number of frames per second >= 0, got 'fast'" in capsys.readouterr().err
+
+
+def test_a_reimport_without_a_speed_drops_the_earlier_speed(run_dir, tmp_path, capsys):
+    src = tmp_path / "OPE" / "THEIRS"
+    src.mkdir(parents=True)
+    (src / "SquareA.json").write_text(json.dumps([GOOD]))
+    main(["report", str(run_dir), "--import", str(src)])
+    summary = json.loads((run_dir / "report" / "summary.json").read_text())
+    assert summary["trackers"]["THEIRS"]["fps"] == pytest.approx(20.0)
+    (src / "SquareA.json").write_text(json.dumps([{k: v for k, v in GOOD.items() if k != "fps"}]))
+    main(["report", str(run_dir), "--import", str(src)])
+    capsys.readouterr()
+    summary = json.loads((run_dir / "report" / "summary.json").read_text())
+    assert summary["trackers"]["THEIRS"]["fps"] is None  # unknown, not the first import's 20
+    assert not (run_dir / "results" / "THEIRS" / "times" / "SquareA_time.txt").exists()
+    meta = json.loads((run_dir / "results" / "THEIRS" / "import.json").read_text())
+    assert meta["sequences"]["SquareA"]["fps"] is None

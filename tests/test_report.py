@@ -382,3 +382,72 @@ def test_our_result_files_are_read_strictly(run):
     s = build_report(run["dir"], formats=("png",))
     assert "SeqC" not in s["trackers"]["alpha"]["sequences"]
     assert "results/alpha/SeqC.txt, line 3: blank line" in s["trackers"]["alpha"]["errors"]["SeqC"]
+
+
+# ----------------------------------------------------------------------------- issue 46: formula injection
+
+
+def _add_sequence(run, name: str, n: int = 5) -> None:
+    """A sequence ``name`` in the run's dataset and ``run.json``, with a result of alpha."""
+    import matplotlib.image
+
+    ds = Path(json.loads((run["dir"] / "run.json").read_text())["dataset"])
+    gt = _gt(n, 0)
+    _write(ds / name / "groundtruth_rect.txt", gt)
+    (ds / name / "img").mkdir()
+    for i in range(n):
+        matplotlib.image.imsave(ds / name / "img" / f"{i + 1:04d}.png", np.zeros((64, 96)), cmap="gray")
+    _write(run["dir"] / "results" / "alpha" / f"{name}.txt", _shifted(gt, 3))
+    meta = json.loads((run["dir"] / "run.json").read_text())
+    meta["sequences"].append(name)
+    (run["dir"] / "run.json").write_text(json.dumps(meta))
+
+
+FORMULAS = ['=HYPERLINK("http:x","y")', "+1+1", "@SUM(1)", "-2+3", "\t=1+2", "\r=3+4"]
+
+
+def test_csv_cells_a_spreadsheet_would_run_as_formulas_are_escaped(run):
+    """OWASP's advice on CSV injection: a text cell starting with = + - @, tab or carriage
+    return gets a leading quote; names that are plain text or plain numbers are kept."""
+    import csv
+
+    for name in [*FORMULAS, "-1", "Plain"]:
+        _add_sequence(run, name)
+    s = build_report(run["dir"], formats=("png",))
+    with open(run["dir"] / "report" / "table.csv", encoding="utf-8", newline="") as fh:
+        rows = list(csv.reader(fh))
+    first = {r[0]: r for r in rows if r}
+    for name in FORMULAS:
+        assert "'" + name in first and name not in first, name
+        got = float(first["'" + name][1])
+        assert got == pytest.approx(s["trackers"]["alpha"]["sequences"][name]["avg_overlap"], abs=1e-6)
+    assert "-1" in first and "Plain" in first and "SeqA" in first
+    assert rows[0][:2] == ["sequence", "alpha"]
+
+
+def test_csv_numbers_stay_numbers_even_when_negative(run):
+    from smtmvt.evaluation.scoring import Summary
+    from smtmvt.evaluation.tables import csv_table
+
+    s = build_report(run["dir"], formats=("png",))
+    summary = Summary(**s)
+    summary.trackers["alpha"]["avg_overlap"] = -0.5
+    summary.trackers["alpha"]["sequences"]["SeqA"]["avg_overlap"] = -0.25
+    lines = csv_table(summary).splitlines()
+    assert next(line for line in lines if line.startswith("average,")).split(",")[1] == "-0.500000"
+    assert next(line for line in lines if line.startswith("SeqA,")).split(",")[1] == "-0.250000"
+
+
+# ----------------------------------------------------------------------------- issue 46: the collision's own message
+
+
+def test_a_name_collision_is_reported_as_one_not_as_missing_ground_truth(run):
+    for name in ("Seq_1", "Seq-1"):
+        _add_sequence(run, name)
+    s = build_report(run["dir"], formats=("png",))
+    (row,) = [seq for seq in s["table_sequences"] if seq in ("Seq_1", "Seq-1")]  # one row: the names match
+    message = s["trackers"]["alpha"]["errors"][row]
+    assert "name collision: sequences 'Seq-1' and 'Seq_1' differ only in case or separators" in message
+    assert "rename one" in message and "no ground truth" not in message
+    md = (run["dir"] / "report" / "table.md").read_text()
+    assert f"- alpha / {row}: " in md and "no ground truth" not in md

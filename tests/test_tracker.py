@@ -108,6 +108,25 @@ def test_bad_frames_name_the_problem(demo, frame, match):
         t.update(frame)
 
 
+@pytest.mark.parametrize("detailed", [False, True])
+def test_a_frame_of_another_size_is_refused_and_changes_nothing(demo, detailed):
+    """Boxes refer to init's pixel grid: a frame of another size is refused, naming both
+    sizes, and the tracker goes on as if it had never seen it."""
+    frames = demo.frames[:3]
+    h, w = frames[0].shape[:2]
+    t, ref = Tracker(FAST), Tracker(FAST)
+    for tr in (t, ref):
+        tr.init(frames[0], demo.groundtruth[0])
+    r1 = t.update(frames[1])
+    assert ref.update(frames[1]).box == r1.box
+    for other in (frames[2][: h - 40], frames[2][:, : w - 1], cv2.resize(frames[2], (2 * w, 2 * h))):
+        oh, ow = other.shape[:2]
+        with pytest.raises(ValueError, match=rf"{ow}x{oh} pixels but init's frame was {w}x{h}"):
+            t.update_detailed(other) if detailed else t.update(other)
+    assert t.box == r1.box
+    np.testing.assert_array_equal(t.update(frames[2]).box, ref.update(frames[2]).box)
+
+
 def test_gray_and_16bit_frames_track_like_8bit(demo):
     gray8 = demo.frames[:6].mean(axis=3).astype(np.uint8)
     gray16 = gray8.astype(np.uint16) * 257
@@ -490,3 +509,17 @@ def test_dog_intensity_plane_against_scipy():
     ref = gaussian_filter(g, sigma, truncate=4.0) - gaussian_filter(g, 2 * sigma, truncate=4.0)
     inner = (slice(25, -25), slice(25, -25))
     np.testing.assert_allclose(plane[inner], ref[inner], atol=2e-4 * np.abs(ref[inner]).max())
+
+
+@pytest.mark.parametrize(
+    "box,shown",
+    [
+        (np.array([-40.0, -40.0, 50.0, 50.0]), "box (-40.0, -40.0, 50.0, 50.0) is mostly outside"),
+        (np.array([10.0, 10.0, 0.0, 20.0]), "box (10.0, 10.0, 0.0, 20.0) has zero or negative size"),
+        ((np.float64(1), np.nan, 3, 4), "got (1.0, nan, 3.0, 4.0)"),
+    ],
+)
+def test_box_errors_show_plain_numbers(demo, box, shown):
+    with pytest.raises(ValueError) as info:
+        Tracker(FAST).init(demo.frames[0], box)
+    assert shown in str(info.value) and "np." not in str(info.value)

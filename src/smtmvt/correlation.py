@@ -137,7 +137,7 @@ def window_shape(box) -> tuple[int, int]:
     window's centre is a cell's centre."""
     w, h = float(box[2]), float(box[3])
     if not (w > 0 and h > 0):
-        raise ValueError(f"correlation window: box {tuple(box)} has no area")
+        raise ValueError(f"correlation window: box {tuple(np.asarray(box, dtype=float).tolist())} has no area")
     k = BOX_PIXELS / np.sqrt(w * h)
     cells = [max(5, int(round(PADDING * s * k / CELL))) for s in (h, w)]
     return (CELL * (cells[0] | 1), CELL * (cells[1] | 1))

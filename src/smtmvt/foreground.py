@@ -98,7 +98,8 @@ def foreground_model(color: np.ndarray, box) -> np.ndarray:
     x0, y0, x1, y1 = _edges(box, 1.0, bins.shape)[:, 0]
     X0, Y0, X1, Y1 = _edges(box, SURROUND, bins.shape)[:, 0]
     if x1 <= x0 or y1 <= y0:
-        raise ValueError(f"foreground model: box {tuple(box)} has no pixel inside the {bins.shape} plane")
+        shown = tuple(np.asarray(box, dtype=float).tolist())  # plain numbers, not np.float64(...)
+        raise ValueError(f"foreground model: box {shown} has no pixel inside the {bins.shape} plane")
     inside = np.bincount(bins[y0:y1, x0:x1].ravel(), minlength=n_bins).astype(np.float64)
     around = np.bincount(bins[Y0:Y1, X0:X1].ravel(), minlength=n_bins).astype(np.float64) - inside
     total = inside + around

@@ -59,7 +59,7 @@ def model_size(box_size) -> tuple[int, int]:
     ``MODEL_AREA``, each side a multiple of ``CELL`` and at least ``2 * CELL``."""
     w, h = float(box_size[0]), float(box_size[1])
     if not (w > 0 and h > 0):
-        raise ValueError(f"scale filter: box size {tuple(box_size)} has no area")
+        raise ValueError(f"scale filter: box size {tuple(np.asarray(box_size, dtype=float).tolist())} has no area")
     k = min(1.0, np.sqrt(MODEL_AREA / (w * h)))
     return tuple(CELL * max(2, int(round(s * k / CELL))) for s in (h, w))  # type: ignore[return-value]
 

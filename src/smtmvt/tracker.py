@@ -438,16 +438,22 @@ class Tracker:
             self._init(frame, box)
 
     def update(self, frame: np.ndarray) -> TrackResult:
-        """Track the target into ``frame``; returns a :class:`TrackResult`."""
+        """Track the target into ``frame``; returns a :class:`TrackResult`.
+
+        ``frame`` must have the height and width of ``init``'s frame (boxes refer to
+        one pixel grid): another size is a ValueError naming both, and the tracker's
+        state is left as it was.
+        """
         with self._blas_limit():
             return self._update(frame)[0]
 
     def _init(self, frame: np.ndarray, box) -> None:
         b = np.asarray(box, dtype=np.float64).reshape(-1)
+        shown = tuple(b.tolist())  # plain numbers in messages, not np.float64(...)
         if b.size != 4 or not np.all(np.isfinite(b)):
-            raise ValueError(f"init: box must be 4 finite numbers (x, y, w, h), got {box!r}")
+            raise ValueError(f"init: box must be 4 finite numbers (x, y, w, h), got {shown}")
         if b[2] <= 0 or b[3] <= 0:
-            raise ValueError(f"init: box {tuple(b)} has zero or negative size")
+            raise ValueError(f"init: box {shown} has zero or negative size")
         cfg = self.config
         # planes computed on the candidates' window only (the background ring reads farther)
         self._crop = bool(cfg.crop_planes and not cfg.background_weight)
@@ -459,12 +465,13 @@ class Tracker:
         else:
             self._scale = np.array([cfg.frame_size[0] / shape[1], cfg.frame_size[1] / shape[0]])
         prepared = self._prepare(frame, "init frame", None)
+        self._frame_shape = (int(shape[0]), int(shape[1]))
         self._channels = prepared.color.shape[2]
         wb = self._to_work(b)
         inside = box_inside_fraction(wb, prepared.shape)
         if inside < 0.25:
             raise ValueError(
-                f"init: box {tuple(b)} is mostly outside the {shape[1]}x{shape[0]} image ({inside:.0%} inside)"
+                f"init: box {shown} is mostly outside the {shape[1]}x{shape[0]} image ({inside:.0%} inside)"
             )
         self.timings = defaultdict(float)
         # in the working frame, as the paper
@@ -609,6 +616,7 @@ class Tracker:
         """One frame: particles -> planes -> views -> codes -> likelihoods -> state."""
         if not self._initialized:
             raise RuntimeError("update called before init")
+        self._check_frame(frame)
         self._frame_index += 1
         rng_state = self._rng.bit_generator.state
         plane_scale = self._plane_scale()
@@ -639,6 +647,18 @@ class Tracker:
                 self._filter.update(frame, self._from_work(self._work_box), self.config.correlation_rate)
         return result, detail
 
+    def _check_frame(self, frame) -> None:
+        """Raise ValueError for a frame that cannot be read (shape, dtype, NaN) or whose
+        height and width differ from ``init``'s frame; nothing is changed before."""
+        where = f"frame {self._frame_index + 1}"
+        h, w = check_frame(frame, where).shape[:2]
+        h0, w0 = self._frame_shape
+        if (h, w) != (h0, w0):
+            raise ValueError(
+                f"update: {where} is {w}x{h} pixels but init's frame was {w0}x{h0}: "
+                "every frame must have the first frame's size (call init again for another size)"
+            )
+
     def _seems_lost(self, judged) -> bool:
         """Whether this frame's ``judged`` response (:meth:`_judge`) says the
         target is lost: its peak below ``config.template_learn_floor`` times
@@ -664,11 +684,9 @@ class Tracker:
     def _response(self, frame) -> tuple | None:
         """The correlation filter's response over its window about this frame's
         prediction, ``(response (h, w), Window)`` (:mod:`smtmvt.correlation`),
-        or None without the filter. The frame is checked first, so that a
-        frame that cannot be read is named as :meth:`_prepare` names it."""
+        or None without the filter (the frame was checked by :meth:`_check_frame`)."""
         if self._filter is None:
             return None
-        check_frame(frame, f"frame {self._frame_index}")
         cfg = self.config
         with self._timed("likelihood"):
             box = self._from_work(affine_to_box(self._predicted()))

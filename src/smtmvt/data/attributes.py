@@ -30,6 +30,7 @@ import re
 from pathlib import Path
 
 from .errors import SequenceError
+from .files import read_regular_bytes
 from .names import lookup, natural_key
 
 __all__ = ["ATTRIBUTES", "OTB_FLAG_ORDER", "ATTRIBUTE_NAMES", "load_attributes", "attributes_of"]
@@ -85,8 +86,9 @@ def load_attributes(path) -> dict:
     Raises
     ------
     SequenceError
-        Missing path, a flag file without exactly 11 flags 0/1, an unknown
-        attribute code, a duplicate name; naming the file (and line).
+        Missing path, a file that is not UTF-8 text or not a regular file, a
+        flag file without exactly 11 flags 0/1, an unknown attribute code, a
+        duplicate name; naming the file (and line).
     """
     path = Path(path)
     if path.is_dir() and (path / _TABLE_FILE).is_file():
@@ -97,7 +99,7 @@ def load_attributes(path) -> dict:
                 path = sub
                 break
         table = _read_flag_folder(path)
-    elif path.is_file():
+    elif path.exists():  # a file (a FIFO or device is refused by _read_text, never waited on)
         table = _read_table_file(path)
     else:
         raise SequenceError(f"attribute file or folder not found: {path}", path=path)
@@ -122,7 +124,7 @@ def _read_flag_folder(folder: Path) -> dict:
         raise SequenceError(f"no attribute files (<Seq>.txt) in {folder}", path=folder)
     table: dict[str, tuple] = {}
     for f in files:
-        text = f.read_text(encoding="utf-8-sig").strip()
+        text = _read_text(f).strip()
         flags = _SPLIT.split(text) if text else []
         if len(flags) != len(OTB_FLAG_ORDER) or any(v not in ("0", "1") for v in flags):
             raise SequenceError(
@@ -137,7 +139,7 @@ def _read_flag_folder(folder: Path) -> dict:
 
 def _read_table_file(path: Path) -> dict:
     table: dict[str, tuple] = {}
-    for i, line in enumerate(path.read_text(encoding="utf-8-sig").splitlines(), start=1):
+    for i, line in enumerate(_read_text(path).splitlines(), start=1):
         stripped = line.strip()
         if not stripped or stripped.startswith("#"):
             continue
@@ -157,6 +159,20 @@ def _read_table_file(path: Path) -> dict:
     if not table:
         raise SequenceError(f"attribute table is empty: {path}", path=path)
     return table
+
+
+def _read_text(path: Path) -> str:
+    """The UTF-8 text of ``path`` (a byte-order mark dropped); SequenceError naming the file
+    when it cannot be read, is not a regular file, or is not UTF-8 text."""
+    try:
+        raw = read_regular_bytes(path)
+    except OSError as exc:
+        raise SequenceError(f"cannot read attribute file {path}: {exc.strerror or exc}", path=path) from None
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = raw[: exc.start].count(b"\n") + 1
+        raise SequenceError(f"{path}, line {line}: not a text file (undecodable byte)", path=path, line=line) from None
 
 
 def _add(table: dict, name: str, codes: tuple, path: Path, line: int) -> None:

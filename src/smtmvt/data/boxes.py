@@ -23,6 +23,7 @@ import numpy as np
 
 from .atomic import write_text_atomic
 from .errors import SequenceError
+from .files import read_regular_bytes
 
 __all__ = ["parse_boxes", "read_boxes", "write_boxes", "ONE_BASED_OFFSET"]
 
@@ -107,11 +108,12 @@ def read_boxes(path, *, one_based: bool = False, allow_empty: bool = False) -> n
     Raises
     ------
     SequenceError
-        Missing/unreadable/empty file or malformed line, naming the file (and line).
+        Missing/unreadable/empty file, not a regular file (a FIFO), or malformed
+        line, naming the file (and line).
     """
     path = os.fspath(path)
     try:
-        raw = Path(path).read_bytes()
+        raw = read_regular_bytes(path)  # a FIFO in its place is an error, not a wait
     except FileNotFoundError:
         raise SequenceError(f"box file not found: {path}", path=path) from None
     except OSError as exc:

@@ -16,6 +16,7 @@ import cv2
 import numpy as np
 
 from .errors import SequenceError
+from .files import read_regular_bytes
 
 __all__ = ["IMAGE_EXTENSIONS", "read_frame", "is_grayscale_frame", "is_image_file"]
 
@@ -54,7 +55,7 @@ def read_frame(path) -> np.ndarray:
     try:
         # imdecode on the bytes (rather than cv2.imread) gives a clear error for a
         # missing file and works with non-ASCII paths on every platform.
-        data = np.fromfile(path, dtype=np.uint8)
+        data = np.frombuffer(read_regular_bytes(path), dtype=np.uint8)
     except FileNotFoundError:
         raise SequenceError(f"image file not found: {path}", path=path) from None
     except OSError as exc:

@@ -18,7 +18,7 @@
     adds foreign per-frame results (published trackers) to the run first. Exit status 0 when
     every pair was scored, 1 when the report has gaps (errors of the run, or result files
     that cannot be used; printed, and listed in the report), 2 when no report could be built
-    (for instance RUN_DIR is not a run folder).
+    (for instance RUN_DIR is not a run folder, or it has no tracker to report).
 """
 
 from __future__ import annotations
@@ -218,8 +218,10 @@ def cmd_evaluate(args) -> int:
     )
     for note in run.notes:
         print(f"note: {note}")
-    if args.max_frames:
-        print(f"note: --max-frames {args.max_frames}: sequences were cut short (not OTB-compliant)")
+    if run.cut_short:  # only when some sequence is longer than the limit
+        names = ", ".join(run.cut_short[:5]) + (", ..." if len(run.cut_short) > 5 else "")
+        n_cut = len(run.cut_short)
+        print(f"note: --max-frames {args.max_frames}: {n_cut} sequence(s) cut short ({names}): not OTB-compliant")
     print(f"results: {run.run_dir / 'results'}")
     _print_errors(run.errors, run.run_dir)
     if args.no_report:

@@ -74,7 +74,8 @@ class GroundTruth:
             self._names.setdefault(canonical_name(name), name)
         for key, names in name_clashes(dict.fromkeys(n for n, _ in found)).items():
             self._errors[key] = (
-                f"{self.root}: sequences {' and '.join(map(repr, names))} differ only in case or separators"
+                f"{self.root}: name collision: sequences {' and '.join(map(repr, names))} differ only in case "
+                "or separators, so neither is scored (one would carry the other's scores): rename one"
             )
             self._boxes.pop(key, None)
             self._files.pop(key, None)

@@ -50,7 +50,8 @@ def import_into_run(
     Only the run's sequences are imported (``sequences`` narrows them further; names match
     by :func:`~smtmvt.data.canonical_name` and take the run's spelling). Per-frame times go to
     ``times/<seq>_time.txt`` when the source has them (text) or an fps (``1/fps`` per
-    frame). Provenance and the annotation offset of each sequence (Tiger1 starts at frame 6
+    frame); without either, no times (those of an earlier import of that sequence are removed).
+    Provenance and the annotation offset of each sequence (Tiger1 starts at frame 6
     in the toolkit's files) go to ``results/<tracker>/import.json``. ``notes`` (a list)
     receives the remarks (skipped results, renamed trackers). Returns ``{tracker:
     [sequences written]}``; ValueError when nothing could be imported.
@@ -142,5 +143,7 @@ def _store(run: RunDir, tracker: str, items: dict[str, ImportedResult]) -> list[
             times = np.asarray(res.times, dtype=np.float64)
         elif res.fps and res.fps > 0:
             times = np.full(len(res.boxes), 1.0 / res.fps)
+        else:  # no speed known: an earlier import's times must not give this one its FPS
+            run._checked(run.times_path(tracker, seq)).unlink(missing_ok=True)
         run.write_result(tracker, seq, np.asarray(res.boxes, dtype=np.float64) - ONE_BASED_OFFSET, times)
     return sorted(items)

@@ -33,6 +33,7 @@ for matching everywhere.
 from __future__ import annotations
 
 import json
+import math
 import re
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
@@ -42,6 +43,7 @@ from typing import Any
 import numpy as np
 
 from ..data.attributes import ATTRIBUTE_NAMES, ATTRIBUTES, load_attributes
+from ..data.files import read_regular_bytes
 from ..data.names import canonical_name
 
 __all__ = [
@@ -107,24 +109,23 @@ def read_box_file(path, ncols: int = 4) -> np.ndarray:
     """Read a text box file (one ``x,y,w,h`` row per line; comma, tab, space or ``;``).
 
     Blank lines are skipped. ``NaN`` is accepted. A malformed line raises ``ValueError`` naming
-    the file and the 1-based line number.
+    the file and the 1-based line number; a path that is not a regular file (a FIFO) raises
+    ``OSError`` at once.
     """
     path = Path(path)
     rows = []
-    with open(path, encoding="utf-8", errors="replace") as fh:
-        for lineno, line in enumerate(fh, 1):
-            text = line.strip()
-            if not text:
-                continue
-            parts = [p for p in _SPLIT.split(text) if p]
-            if len(parts) != ncols:
-                raise ValueError(
-                    f"{path}:{lineno}: expected {ncols} numbers (x,y,w,h), got {len(parts)}: {text[:60]!r}"
-                )
-            try:
-                rows.append([float(p) for p in parts])
-            except ValueError:
-                raise ValueError(f"{path}:{lineno}: not a number in {text[:60]!r}") from None
+    text = read_regular_bytes(path).decode("utf-8", errors="replace")
+    for lineno, line in enumerate(text.replace("\r\n", "\n").replace("\r", "\n").split("\n"), 1):
+        line = line.strip()
+        if not line:
+            continue
+        parts = [p for p in _SPLIT.split(line) if p]
+        if len(parts) != ncols:
+            raise ValueError(f"{path}:{lineno}: expected {ncols} numbers (x,y,w,h), got {len(parts)}: {line[:60]!r}")
+        try:
+            rows.append([float(p) for p in parts])
+        except ValueError:
+            raise ValueError(f"{path}:{lineno}: not a number in {line[:60]!r}") from None
     return np.asarray(rows, dtype=np.float64).reshape(-1, ncols)
 
 
@@ -312,25 +313,16 @@ def read_otb_mat(path, tracker: str | None = None, sequence: str | None = None) 
         fields = {n: rec[n] for n in rec.dtype.names}
         if "res" not in fields:
             raise ValueError(f"{path}: results struct has no 'res' field")
-        res = np.asarray(_unwrap(fields["res"]), dtype=np.float64)
         rtype = (
             str(np.asarray(_unwrap(fields.get("type", np.array(["rect"])))).ravel()[0]) if "type" in fields else "rect"
         )
-        if rtype == "rect":
-            boxes = res.reshape(-1, 4) if res.size else np.zeros((0, 4))
-        elif rtype == "ivtAff":
-            tmpl = np.asarray(_unwrap(fields.get("tmplsize")), dtype=np.float64).ravel()
-            if tmpl.size < 2:
-                raise ValueError(f"{path}: ivtAff result without tmplsize")
-            boxes = ivt_affine_to_rect(res, tmpl)
-        else:
-            raise ValueError(f"{path}: unsupported result type {rtype!r} (supported: rect, ivtAff)")
+        tmpl = _unwrap(fields.get("tmplsize"))
         return ImportedResult(
-            boxes=boxes,
+            boxes=_result_boxes(_unwrap(fields["res"]), rtype, tmpl, path),
             result_type=rtype,
             start_frame=_scalar(fields.get("startFrame"), int) if "startFrame" in fields else None,
             anno_begin=_scalar(fields.get("annoBegin"), int) if "annoBegin" in fields else None,
-            fps=_scalar(fields.get("fps"), float) if "fps" in fields else None,
+            fps=_fps(_scalar(fields["fps"], lambda v: v), path) if "fps" in fields else None,
             **common,
         )
     numeric = [
@@ -343,6 +335,69 @@ def read_otb_mat(path, tracker: str | None = None, sequence: str | None = None) 
     raise ValueError(f"{path}: no 'results' struct and no single (n, 4) array (variables: {', '.join(keys) or 'none'})")
 
 
+def _result_boxes(res, rtype, tmplsize, path) -> np.ndarray:
+    """1-based ``(n, 4)`` boxes of a result's ``res`` of type ``rtype`` (``rect`` rows, or
+    ``ivtAff`` affine rows with the template size ``tmplsize``). NaN (no box) is kept;
+    anything else that is not a finite number is a ValueError naming ``path``."""
+    try:
+        arr = np.asarray(res, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{path}: 'res' is not an array of numbers ({exc})") from None
+    if rtype not in ("rect", "ivtAff"):
+        raise ValueError(f"{path}: unsupported result type {rtype!r} (supported: rect, ivtAff)")
+    per_row = 4 if rtype == "rect" else 6
+    if arr.size % per_row:
+        raise ValueError(f"{path}: 'res' holds {arr.size} numbers, not rows of {per_row} ({rtype})")
+    if rtype == "rect":
+        boxes = arr.reshape(-1, 4)
+    else:
+        try:
+            tmpl = np.asarray(tmplsize, dtype=np.float64).ravel()
+        except (TypeError, ValueError):
+            tmpl = np.zeros(0)
+        if tmpl.size < 2 or not np.isfinite(tmpl[:2]).all():
+            raise ValueError(f"{path}: ivtAff result without a valid tmplsize (got {tmplsize!r})")
+        boxes = ivt_affine_to_rect(arr, tmpl)
+    bad = np.isinf(boxes).any(axis=1)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(f"{path}: 'res' row {i + 1} is not finite: {boxes[i].tolist()}")
+    return boxes
+
+
+def _fps(value, path) -> float | None:
+    """A result's frames per second: None when absent, else a finite number >= 0
+    (ValueError naming ``path`` otherwise)."""
+    if value is None:
+        return None
+    try:
+        fps = float(value) if not isinstance(value, (bool, np.bool_)) else math.nan
+    except (TypeError, ValueError):
+        fps = math.nan
+    if not (math.isfinite(fps) and fps >= 0):
+        raise ValueError(f"{path}: 'fps' must be a number of frames per second >= 0, got {_plain(value)!r}")
+    return fps
+
+
+def _frame_number(value, key: str, path) -> int | None:
+    """A 1-based frame number (``startFrame``): None when absent; ValueError naming ``path``
+    unless a whole number >= 1."""
+    if value is None:
+        return None
+    try:
+        number = float(value) if not isinstance(value, (bool, np.bool_)) else math.nan
+    except (TypeError, ValueError):
+        number = math.nan
+    if not (math.isfinite(number) and number.is_integer() and number >= 1):
+        raise ValueError(f"{path}: {key!r} must be a frame number >= 1, got {_plain(value)!r}")
+    return int(number)
+
+
+def _plain(value):
+    """``value`` as Python shows it (a numpy scalar read from a ``.mat`` file made plain)."""
+    return value.item() if isinstance(value, np.generic) else value
+
+
 def load_otb_mat(path) -> np.ndarray:
     """Boxes ``(m, 4)`` (1-based ``x, y, w, h``) of an OTB toolkit ``.mat`` result file."""
     return read_otb_mat(path).boxes
@@ -352,32 +407,26 @@ def read_otb_json(path, tracker: str | None = None) -> ImportedResult:
     """Read a tracker_benchmark per-frame result JSON (``OPE/<TRACKER>/<Seq>.json``)."""
     path = Path(path)
     try:
-        with open(path, encoding="utf-8") as fh:
-            data = json.load(fh)
-    except (OSError, ValueError) as exc:
+        data = json.loads(read_regular_bytes(path).decode("utf-8"))
+    except (OSError, ValueError) as exc:  # a FIFO is refused, not waited on
         raise ValueError(f"{path}: not a JSON result file ({exc})") from None
     rec = data[0] if isinstance(data, list) and data else data
     if not isinstance(rec, dict) or "res" not in rec:
         raise ValueError(f"{path}: no 'res' in this JSON (not a tracker_benchmark result file)")
-    rtype = rec.get("resType", "rect")
-    res = np.asarray(rec["res"], dtype=np.float64)
-    if rtype == "rect":
-        boxes = res.reshape(-1, 4)
-    elif rtype == "ivtAff":
-        boxes = ivt_affine_to_rect(res, rec.get("tmplsize", [32, 32]))
-    else:
-        raise ValueError(f"{path}: unsupported result type {rtype!r} (supported: rect, ivtAff)")
-    start = rec.get("startFrame")
+    for key in ("seqName", "tracker", "resType"):
+        if rec.get(key) is not None and not isinstance(rec[key], str):
+            raise ValueError(f"{path}: {key!r} must be a text, got {rec[key]!r}")
+    rtype = rec.get("resType") or "rect"
     return ImportedResult(
         tracker=tracker or rec.get("tracker") or path.parent.name,
         sequence=rec.get("seqName") or path.stem,
-        boxes=boxes,
+        boxes=_result_boxes(rec["res"], rtype, rec.get("tmplsize", [32, 32]), path),
         source=str(path),
         format="otb-json",
         result_type=rtype,
-        start_frame=int(start) if start is not None else None,
+        start_frame=_frame_number(rec.get("startFrame"), "startFrame", path),
         anno_begin=None,  # unknown in this format; resolved against the annotation length
-        fps=float(rec["fps"]) if rec.get("fps") is not None else None,
+        fps=_fps(rec.get("fps"), path),
     )
 
 
@@ -536,10 +585,27 @@ def load_attribute_table(source) -> dict[str, set[str]]:
     preference.
     """
     if isinstance(source, Mapping):
-        return {canonical_name(k): {a.strip().upper() for a in v} for k, v in source.items()}
+        return _attribute_mapping(source, "attribute table")
     path = Path(source)
     if not path.exists():
         raise FileNotFoundError(f"{path}: no such attribute file or folder")
-    if path.is_file() and path.suffix.lower() == ".json":
-        return load_attribute_table(json.loads(path.read_text(encoding="utf-8")))
+    if not path.is_dir() and path.suffix.lower() == ".json":
+        try:
+            data = json.loads(read_regular_bytes(path).decode("utf-8-sig"))
+        except (OSError, ValueError) as exc:  # a FIFO is refused, not waited on
+            raise ValueError(f"{path}: not a JSON attribute table ({exc})") from None
+        return _attribute_mapping(data, str(path))
     return {canonical_name(name): set(codes) for name, codes in load_attributes(path).items()}
+
+
+def _attribute_mapping(data, where: str) -> dict[str, set[str]]:
+    """``{canonical name: {codes}}`` of a mapping ``{sequence: [codes]}``; ValueError naming
+    ``where`` for anything else (a code list that is not a list of texts)."""
+    if not isinstance(data, Mapping):
+        raise ValueError(f"{where}: expected an object {{sequence: [attribute codes]}}, got {type(data).__name__}")
+    for name, codes in data.items():
+        if not isinstance(name, str) or isinstance(codes, str) or not isinstance(codes, (list, tuple, set, frozenset)):
+            raise ValueError(f"{where}: sequence {name!r}: expected a list of attribute codes, got {codes!r}")
+        if not all(isinstance(c, str) for c in codes):
+            raise ValueError(f"{where}: sequence {name!r}: attribute codes must be texts, got {codes!r}")
+    return {canonical_name(k): {a.strip().upper() for a in v} for k, v in data.items()}

@@ -97,6 +97,11 @@ def build_report(
     dict
         The summary written to ``summary.json`` (:class:`.scoring.Summary` as a dict; ``fps``
         is frames / total tracking time from the times files, None without them).
+
+    Raises
+    ------
+    ValueError
+        Not a run folder, no dataset, or no tracker to report (nothing is written then).
     """
     _check_mode(invalid)
     run = run_dir if isinstance(run_dir, RunDir) else RunDir(run_dir)
@@ -107,6 +112,12 @@ def build_report(
         if not dataset:
             raise ValueError(f"{run.root}: no dataset given and run.json names none (pass dataset=...)")
         published = (info.published if published is None else published) or None
+        names = _trackers(run, info, trackers)
+        if not names:
+            raise ValueError(
+                f"{run.root}: no tracker to report (run.json names none and results/ has no tracker folder); "
+                "run smtmvt evaluate on it, or import results with smtmvt report --import"
+            )
         gt = GroundTruth(dataset)
         errors: list[dict] = []
         table, source = _attribute_table(attributes, info, published, gt, errors)
@@ -114,7 +125,7 @@ def build_report(
             run,
             info,
             gt,
-            trackers=_trackers(run, info, trackers),
+            trackers=names,
             sequences=_sequences(run, info, gt, sequences),
             repeat=repeat,
             invalid=invalid,

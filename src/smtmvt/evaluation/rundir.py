@@ -38,6 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from ..data import SequenceError, read_boxes, write_boxes, write_bytes_atomic
+from ..data.files import read_regular_bytes
 
 __all__ = [
     "RunDir",
@@ -227,7 +228,7 @@ class RunDir:
         """``import.json`` of an imported tracker (``{"imported": True, "sequences": {seq:
         provenance}}``); an empty dict when there is none or it cannot be read."""
         try:
-            meta = json.loads(self.import_json(tracker).read_text(encoding="utf-8"))
+            meta = json.loads(read_regular_bytes(self.import_json(tracker)).decode("utf-8"))
         except (OSError, ValueError):
             return {}
         return meta if isinstance(meta, dict) else {}
@@ -308,10 +309,10 @@ class RunDir:
 
     def read_times(self, tracker: str, sequence: str, repeat: int = 0) -> np.ndarray | None:
         """Seconds per frame ``(n,)`` of one pair, or None when the file is missing or not
-        one finite non-negative number per line."""
+        one finite non-negative number per line (or not a regular file: a FIFO is not read)."""
         path = self.times_path(tracker, sequence, repeat)
         try:
-            lines = [line for line in path.read_text(encoding="utf-8").splitlines() if line.strip()]
+            lines = [line for line in read_regular_bytes(path).decode("utf-8").splitlines() if line.strip()]
             times = np.array([float(v) for v in lines], dtype=np.float64)
         except (OSError, ValueError):
             return None

@@ -107,6 +107,7 @@ class RunResult:
     errors : this call's errors, ``{"tracker", "sequence", "repeat", "error"}`` dicts (also
         in ``errors.json``, which keeps errors of pairs not part of this call).
     notes : remarks (result files recomputed and why, settings).
+    cut_short : the sequences longer than ``max_frames``, run on their first frames only.
     repeat : repeats used by this call.
     report : what ``build_report`` returned, or None; report_error : why it failed.
     """
@@ -118,6 +119,7 @@ class RunResult:
     skipped: list = field(default_factory=list)
     errors: list = field(default_factory=list)
     notes: list = field(default_factory=list)
+    cut_short: list = field(default_factory=list)
     frames: int = 0
     seconds: float = 0.0
     repeat: int = 1
@@ -197,12 +199,13 @@ def run_evaluation(
     ------
     ValueError, OSError
         Only for problems with the whole run (no dataset folder, a run folder made for another
-        dataset or frame limit, a folder in use, no tracker given, unreachable scheduler);
-        everything per pair is recorded.
+        dataset or frame limit, a folder in use, no tracker given, unreachable scheduler, an
+        attribute table that cannot be read); everything per pair is recorded.
     """
     t_run = time.perf_counter()
     dataset_dir = Path(dataset_dir).expanduser().resolve()
     sequences = _check_arguments(dataset_dir, sequences, max_frames, workers, repeat)
+    _check_attributes(attributes)
     tracker_options = dict(tracker_options or {})
     known, unknown = _resolve_trackers(trackers, tracker_options)
     if isinstance(scheduler, str):
@@ -224,6 +227,8 @@ def run_evaluation(
             overwrite=overwrite,
         )
         result = RunResult(run.root, [s.name for s in known], [s.name for s in seqs], notes=notes, repeat=info.repeat)
+        if info.max_frames is not None:
+            result.cut_short = [s.name for s in seqs if len(s) > info.max_frames]
         book = _Book(run, result, info)
         for name, message in unknown:
             book.record(name, None, message)
@@ -257,6 +262,19 @@ def _check_arguments(dataset_dir: Path, sequences, max_frames, workers, repeat) 
     if not isinstance(workers, int) or workers < 1:
         raise ValueError(f"workers must be >= 1, got {workers!r}")
     return sequences
+
+
+def _check_attributes(attributes) -> None:
+    """Read the attribute table before anything runs: a bad one is an error of the whole
+    command (nothing is run, nothing stored in ``run.json`` for later reports to trip on)."""
+    if not attributes:
+        return
+    from .published import load_attribute_table
+
+    try:
+        load_attribute_table(attributes)
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"attribute table {attributes} cannot be used (nothing was run): {exc}") from None
 
 
 class _Book:

@@ -101,12 +101,13 @@ def score_run(
     """
     errors = _run_errors(run)
     failed_in_run = {(e["tracker"], canonical_name(e["sequence"] or "")) for e in errors}
-    scored_seqs, gts = [], {}
+    scored_seqs, gts, gt_problems = [], {}, {}
     for seq in sequences:
         try:
             gts[seq] = gt.load(seq)
             scored_seqs.append(seq)
         except (OSError, ValueError) as exc:
+            gt_problems[seq] = str(exc)  # what is wrong (missing, a name clash, ...), said per pair too
             errors.append({"tracker": None, "sequence": seq, "error": str(exc), "stage": "report"})
     entries, all_runs = {}, {}
     for t in trackers:
@@ -116,9 +117,8 @@ def score_run(
                 pair_errors[seq] = "failed in the run (errors.json)"
             else:
                 errors.append({"tracker": t, "sequence": seq, "error": msg, "stage": "report"})
-        for seq in sequences:
-            if seq not in gts:
-                pair_errors[seq] = "no ground truth"
+        for seq, problem in gt_problems.items():
+            pair_errors[seq] = problem
         entries[t] = _tracker_entry(run, t, all_runs[t], pair_errors, repeat)
     subsets = _attribute_subsets(attribute_table, scored_seqs, all_runs)
     for t, entry in entries.items():

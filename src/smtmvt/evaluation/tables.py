@@ -4,13 +4,17 @@ Rows are sequences, columns trackers, then Average / AUC / Precision / FPS rows;
 value of each row is bold (compared at the digits shown). With repeats (``repeat > 1``) a
 cell shows ``mean ± std`` over the repeats and the CSV has a ``<tracker>_std`` column beside
 each tracker.
+
+``table.csv`` is opened by spreadsheets, which run a cell starting with ``=``, ``+``, ``-``,
+``@``, a tab or a carriage return as a formula: such a text cell (a sequence named
+``=HYPERLINK(...)``) is written with a leading ``'`` (OWASP's advice on CSV injection), so it
+shows as the text it is. Numbers are ours, written as numbers (``-0.5`` stays ``-0.5``).
 """
 
 from __future__ import annotations
 
-import csv
 import html
-import io
+import re
 from dataclasses import dataclass
 
 from .scoring import Summary
@@ -18,6 +22,9 @@ from .scoring import Summary
 __all__ = ["markdown_table", "csv_table", "html_table"]
 
 _DIGITS = 2
+#: first characters that make a spreadsheet read a cell as a formula (OWASP, CSV injection)
+_FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+_PLAIN_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 
 
 @dataclass
@@ -116,27 +123,47 @@ def markdown_table(summary: Summary) -> str:
 
 
 def csv_table(summary: Summary) -> str:
-    """``table.csv``: full-precision numbers (empty where there is none)."""
+    """``table.csv``: full-precision numbers (empty where there is none), text cells escaped
+    (:func:`_csv_text`), one ``\\n``-ended line per row."""
     std = _shows_std(summary)
     trackers = list(summary.trackers)
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["sequence", *[c for t in trackers for c in ([t, f"{t}_std"] if std else [t])]])
+    header = [c for t in trackers for c in ([t, f"{t}_std"] if std else [t])]
+    lines = [_csv_line([_csv_text(c) for c in ["sequence", *header]])]
 
     def cells(pairs):
         return [_csv(v) for mean, sd in pairs for v in ([mean, sd] if std else [mean])]
 
     for seq in summary.table_sequences:
         got = [summary.trackers[t]["sequences"].get(seq, {}) for t in trackers]
-        w.writerow([seq, *cells((g.get("avg_overlap"), g.get("avg_overlap_std")) for g in got)])
+        lines.append(_csv_line([_csv_text(seq), *cells((g.get("avg_overlap"), g.get("avg_overlap_std")) for g in got)]))
     for label, key in (("average", "avg_overlap"), ("auc", "auc"), ("precision20", "precision20")):
-        w.writerow([label, *cells((summary.trackers[t][key], summary.trackers[t][f"{key}_std"]) for t in trackers)])
-    w.writerow(["fps", *cells((summary.trackers[t]["fps"], None) for t in trackers)])
-    return buf.getvalue()
+        pairs = ((summary.trackers[t][key], summary.trackers[t][f"{key}_std"]) for t in trackers)
+        lines.append(_csv_line([label, *cells(pairs)]))
+    lines.append(_csv_line(["fps", *cells((summary.trackers[t]["fps"], None) for t in trackers)]))
+    return "".join(lines)
+
+
+def _csv_line(cells: list[str]) -> str:
+    """One CSV row. A cell holding ``,``, ``"``, ``\\r`` or ``\\n`` is quoted and its quotes
+    doubled (RFC 4180); ``csv.writer`` leaves a lone ``\\r`` unquoted, which splits the row."""
+
+    def quoted(cell: str) -> str:
+        return '"' + cell.replace('"', '""') + '"' if any(ch in cell for ch in ',"\r\n') else cell
+
+    return ",".join(quoted(c) for c in cells) + "\n"
 
 
 def _csv(v) -> str:
+    """A number's cell (6 decimals), empty for None."""
     return "" if v is None else f"{v:.6f}"
+
+
+def _csv_text(text: str) -> str:
+    """A text cell that no spreadsheet runs as a formula: ``'`` before a leading ``= + - @``,
+    tab or carriage return (a plain number such as ``-1`` is no formula and is kept)."""
+    if text.startswith(_FORMULA_START) and not _PLAIN_NUMBER.fullmatch(text):
+        return "'" + text
+    return text
 
 
 def html_table(summary: Summary) -> str:

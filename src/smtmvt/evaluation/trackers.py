@@ -37,7 +37,9 @@ How the OpenCV peers are driven (:class:`OpenCVTracker`)
   whole pixels that *cover* it (``floor`` of the top-left, ``ceil`` of the bottom-right),
   so an integer ground-truth box passes unchanged. The legacy API takes a float
   ``cv2.Rect2d``: the box is passed as floats. The initial box is clipped to the image
-  (OpenCV asserts on boxes that leave it; OTB has a few such first frames).
+  (OpenCV asserts on boxes that leave it; OTB has a few such first frames); one with less
+  than a quarter of its area inside (``w = 1e308``) is refused, as :class:`smtmvt.Tracker`
+  refuses it, never clipped into another box.
 - **Lost (``update`` returns False)**: OpenCV then leaves the box unspecified (the current
   API returns ``(0, 0, 0, 0)``, which would score zero on every following frame). The
   adapter reports the **previous box** instead: the tracker's last known position, which is
@@ -77,6 +79,7 @@ from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
+from ..geometry import box_inside_fraction
 from .rundir import check_tracker_name
 
 __all__ = [
@@ -247,6 +250,10 @@ def to_bgr8(frame: np.ndarray) -> np.ndarray:
     raise ValueError(f"frame shape {a.shape} not supported (expected (H,W), (H,W,3) or (H,W,4))")
 
 
+#: the least share of the initial box's area inside the image (as :meth:`smtmvt.Tracker.init`)
+MIN_INSIDE = 0.25
+
+
 def _valid_box(box) -> bool:
     return len(box) == 4 and all(math.isfinite(v) for v in box) and box[2] > 0 and box[3] > 0
 
@@ -348,7 +355,12 @@ class OpenCVTracker:
         box = tuple(float(v) for v in box)
         if not _valid_box(box):
             raise ValueError(f"{self.name}: invalid initial box {box}")
-        box = _clip_to_image(box, np.shape(frame))
+        h, w = np.shape(frame)[:2]
+        inside = box_inside_fraction(box, (h, w))
+        if inside < MIN_INSIDE:  # clipped, such a box would silently become another one
+            where = f"the {w}x{h} image ({inside:.0%} inside)"
+            raise ValueError(f"{self.name}: initial box {box} is mostly outside {where}")
+        box = _clip_to_image(box, (h, w))
         self._scale = 1.0
         if self.name == "opencv-tld" and min(box[2], box[3]) < self.TLD_MIN_SIDE:
             # a hair above the exact factor so TLD's own factor 20/min(w,h) is <= 1
