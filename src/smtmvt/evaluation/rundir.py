@@ -170,8 +170,9 @@ class RunDir:
     """A run folder (see the module docstring for its layout).
 
     ``RunDir(path)`` does no I/O. The folder is a run once it has ``run.json``
-    (:meth:`create` / :meth:`settle` writes it); the report and imports refuse a folder that
-    is not (:meth:`info`).
+    (:meth:`settle` writes it); the report and imports refuse a folder that is not
+    (:meth:`info`), and ``evaluate`` makes a run only of a new or empty folder
+    (:meth:`check_can_hold_run`).
     """
 
     def __init__(self, root) -> None:
@@ -360,6 +361,7 @@ class RunDir:
                 self._lock_depth -= 1
             return
         if create:
+            self.check_can_hold_run()
             self.root.mkdir(parents=True, exist_ok=True)
         else:
             self.info()
@@ -394,6 +396,7 @@ class RunDir:
         returned ``info.repeat`` is this command's count. Call under :meth:`locked`.
         """
         notes: list[str] = []
+        self.check_can_hold_run()
         self._remove_stale_temporaries(notes)
         old = self._read_info() if self.run_json.is_file() else None
         if old is not None:
@@ -403,10 +406,6 @@ class RunDir:
             if clash:
                 notes.append(self._wipe())
                 old = None
-        elif self.results_dir.exists() and any(self.results_dir.iterdir()):
-            raise RunDirError(
-                f"{self.root} has results/ but no {RUN_JSON}: not a run folder of ours; choose another --out"
-            )
         info = old or RunInfo()
         stored = info.repeat
         info.dataset = str(dataset)
@@ -422,11 +421,33 @@ class RunDir:
             notes.append(f"{self.root} holds {info.repeat} repeats; this command uses the first {wanted}")
         return RunInfo(**{**asdict(info), "repeat": wanted}), notes
 
+    def check_can_hold_run(self) -> None:
+        """RunDirError unless the folder is missing, empty, a run (``run.json``), or holds only
+        what a command stopped before writing ``run.json`` leaves (``.lock``, the temporary
+        file of ``run.json``). Reads only: a folder that is refused is left as it is."""
+        if not self.root.exists():
+            return
+        if not self.root.is_dir():
+            raise RunDirError(f"{self.root} is not a folder; choose another --out")
+        if self.run_json.is_file():
+            return
+        foreign = sorted(p.name for p in self.root.iterdir() if not _is_left_before_run_json(p))
+        if foreign:
+            shown = ", ".join(foreign[:3]) + (", ..." if len(foreign) > 3 else "")
+            raise RunDirError(
+                f"{self.root} is not a run folder (no {RUN_JSON}) and is not empty ({shown}); "
+                f"nothing in it was changed. Choose a new or empty folder for --out"
+            )
+
     def _remove_stale_temporaries(self, notes: list[str]) -> None:
         """Delete the temporary files of atomic writes that a killed command left (hidden
-        ``.<name>.<random>.tmp`` beside their target; no reader ever takes them for results).
-        Safe under the lock: no other command is writing."""
-        stale = [p for p in self.root.rglob(".*.tmp") if p.is_file()] if self.root.is_dir() else []
+        ``.<name>.<random>.tmp`` beside their target; no reader ever takes them for results),
+        only where the run writes: beside ``run.json`` and ``errors.json``, and in its own
+        ``results/`` and ``report/`` trees (real folders only, no link followed). Safe under
+        the lock: no other command is writing."""
+        stale = [p for p in self.root.glob(".*.tmp") if _is_temporary_of(p, (RUN_JSON, ERRORS_JSON))]
+        for top in (self.results_dir, self.report_dir):
+            stale += [p for p in _real_files(top) if _is_temporary_of(p)]
         for p in stale:
             p.unlink(missing_ok=True)
         if stale:
@@ -461,6 +482,33 @@ def _settings_clash(run: RunDir, old: RunInfo, dataset: Path, max_frames: int | 
             f"--overwrite to discard its results"
         )
     return None
+
+
+#: ``.<target>.<8 random characters>.tmp``: the temporary file of an atomic write
+#: (:func:`smtmvt.data.write_bytes_atomic`, ``tempfile.mkstemp``'s names)
+_TEMPORARY = re.compile(r"\.(.+)\.[a-z0-9_]{8}\.tmp")
+
+
+def _is_temporary_of(path: Path, targets: Iterable[str] | None = None) -> bool:
+    """Whether ``path`` is a regular file named as the temporary of an atomic write (of one
+    of ``targets``, when given)."""
+    m = _TEMPORARY.fullmatch(path.name)
+    ok = m is not None and (targets is None or m.group(1) in targets)
+    return ok and path.is_file() and not path.is_symlink()
+
+
+def _is_left_before_run_json(path: Path) -> bool:
+    """``.lock`` or a temporary of ``run.json``: all a command leaves before ``run.json``."""
+    return (path.name == LOCK and path.is_file()) or _is_temporary_of(path, (RUN_JSON,))
+
+
+def _real_files(top: Path) -> Iterator[Path]:
+    """Files under ``top`` through real folders only (nothing when ``top`` is a link)."""
+    if top.is_symlink() or not top.is_dir():
+        return
+    for folder, _, files in os.walk(top, followlinks=False):
+        for name in files:
+            yield Path(folder) / name
 
 
 def _merge(old: Iterable, new: Iterable) -> list:

@@ -202,9 +202,10 @@ def run_evaluation(
     t_run = time.perf_counter()
     dataset_dir = Path(dataset_dir).expanduser().resolve()
     sequences = _check_arguments(dataset_dir, sequences, max_frames, workers, repeat)
+    run = RunDir(out_dir)
+    run.check_can_hold_run()  # a folder that is not a run: refused before anything else
     tracker_options = dict(tracker_options or {})
     known, unknown = _resolve_trackers(trackers, tracker_options)
-    run = RunDir(out_dir)
     with run.locked("smtmvt evaluate", create=True):
         seqs, seq_errors, unknown_seqs = _open_sequences(dataset_dir, sequences)
         if not seqs and not seq_errors and not unknown_seqs:
