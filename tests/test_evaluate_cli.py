@@ -391,24 +391,3 @@ def test_evaluate_numbers_must_be_positive(dataset, tmp_path, capsys, option, va
     assert info.value.code == 2
     assert f"{option}: expected a whole number >= 1, got {value!r}" in capsys.readouterr().err
     assert not (tmp_path / "r").exists()
-
-
-# ----------------------------------------------------------------------------- issue 46: nothing lost
-
-
-@pytest.mark.parametrize("trackers", ["nope", "opencv-kcf"])
-def test_evaluate_refuses_a_folder_that_is_not_a_run_and_changes_nothing(dataset, tmp_path, capsys, trackers):
-    """``--out`` at a user's folder (a git work tree with hidden temporaries): exit 2, one
-    clear error, not a byte changed there, even when no tracker name is valid."""
-    docs = tmp_path / "docs"
-    (docs / ".git" / "objects").mkdir(parents=True)
-    (docs / ".git" / "objects" / ".pack.a1b2c3d4.tmp").write_text("git's")
-    (docs / ".draft.md.a1b2c3d4.tmp").write_text("an editor's")
-    (docs / "notes.txt").write_text("mine")
-    before = {p: (p.read_bytes() if p.is_file() else None) for p in sorted(docs.rglob("*"))}
-    rc = evaluate_cli(dataset, docs, "--trackers", trackers, "--no-report", "--quiet")
-    out, err = capsys.readouterr()
-    assert rc == 2
-    assert f"error: {docs} is not a run folder (no run.json) and is not empty" in err
-    assert "removed" not in out + err
-    assert {p: (p.read_bytes() if p.is_file() else None) for p in sorted(docs.rglob("*"))} == before

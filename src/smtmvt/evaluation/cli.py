@@ -85,7 +85,12 @@ def _add_evaluate(subparsers) -> None:
         help="run each stochastic tracker N times per sequence with N seeds (deterministic ones once); "
         "the report gives mean and std. Default: the run folder's count (1 for a new one)",
     )
-    add("--overwrite", action="store_true", help="discard RUN_DIR's results if it was made with another --max-frames")
+    add(
+        "--overwrite",
+        action="store_true",
+        help="discard RUN_DIR's results if it was made with another --max-frames, "
+        "or a tracker's results if they were made with other tracker settings",
+    )
     add(
         "--tracker-option",
         action="append",

@@ -3,13 +3,16 @@
 Layout (``RUN_DIR`` = :attr:`RunDir.root`)::
 
     run.json                                   settings (RunInfo): dataset, trackers, sequences,
-                                               attributes, published, max_frames, repeat
+                                               attributes, published, max_frames, repeat,
+                                               tracker_settings (per tracker, see .settings)
     errors.json                                [{"tracker", "sequence", "repeat", "error"}, ...]
     .lock                                      held (flock) by the command working on the run
     results/<tracker>/<seq>.txt                repeat 0: 1-based x,y,w,h per frame (got10k/pysot)
     results/<tracker>/times/<seq>_time.txt     seconds per frame of repeat 0
+    results/<tracker>/meta/<seq>.json          what the result started from: first box, frames,
+                                               seed, settings digest (no meta: imported)
     results/<tracker>/repeat-<r>/<seq>.txt     repeat r = 1..N-1 (the same layout one level down)
-    results/<tracker>/repeat-<r>/times/<seq>_time.txt
+    results/<tracker>/repeat-<r>/times/<seq>_time.txt, .../repeat-<r>/meta/<seq>.json
     results/<tracker>/import.json              only for imported trackers: provenance
     report/                                    summary.json, table.md/.csv, plots, index.html
 
@@ -38,6 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from ..data import SequenceError, read_boxes, write_boxes, write_bytes_atomic
+from .settings import settings_difference
 
 __all__ = [
     "RunDir",
@@ -55,6 +59,7 @@ LOCK = ".lock"
 RESULTS = "results"
 REPORT = "report"
 IMPORT_JSON = "import.json"
+META = "meta"
 _TRACKER_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]*")
 _REPEAT_DIR = re.compile(r"repeat-([1-9][0-9]*)")
 
@@ -98,6 +103,8 @@ class RunInfo:
 
     ``max_frames`` None means every frame; ``repeat`` is the number of repeats of the
     stochastic trackers the folder holds (1 for runs made before repeats existed).
+    ``tracker_settings``: ``{tracker: settings record}`` (:mod:`.settings`) of the computed
+    trackers (empty for runs made before it was recorded).
     Keys of ``run.json`` not listed here are kept in ``extra`` and written back.
     """
 
@@ -108,6 +115,7 @@ class RunInfo:
     published: str | None = None
     max_frames: int | None = None
     repeat: int = 1
+    tracker_settings: dict = field(default_factory=dict)
     extra: dict = field(default_factory=dict)
 
     @classmethod
@@ -121,6 +129,10 @@ class RunInfo:
             value = getattr(info, key)
             if value is not None and (not isinstance(value, int) or value < 1):
                 raise RunDirError(f"{path}: {key} must be a whole number >= 1, got {value!r}")
+        settings = data.get("tracker_settings") or {}
+        if not isinstance(settings, dict) or not all(isinstance(v, dict) for v in settings.values()):
+            raise RunDirError(f"{path}: tracker_settings must map tracker names to objects")
+        info.tracker_settings = dict(settings)
         return info
 
     def to_json(self) -> dict:
@@ -217,6 +229,10 @@ class RunDir:
         """``results/<tracker>[/repeat-<r>]/times/<sequence>_time.txt``."""
         return self.tracker_dir(tracker, repeat) / "times" / f"{check_sequence_name(sequence)}_time.txt"
 
+    def record_path(self, tracker: str, sequence: str, repeat: int = 0) -> Path:
+        """``results/<tracker>[/repeat-<r>]/meta/<sequence>.json``: what the result started from."""
+        return self.tracker_dir(tracker, repeat) / META / f"{check_sequence_name(sequence)}.json"
+
     def import_json(self, tracker: str) -> Path:
         return self.tracker_dir(tracker) / IMPORT_JSON
 
@@ -268,13 +284,21 @@ class RunDir:
     def write_text(self, path, text: str) -> Path:
         return self.write_bytes(path, text.encode("utf-8"))
 
-    def write_result(self, tracker: str, sequence: str, boxes, times=None, repeat: int = 0) -> Path:
+    def write_result(
+        self, tracker: str, sequence: str, boxes, times=None, repeat: int = 0, record: dict | None = None
+    ) -> Path:
         """Write one pair's times file (when given), then its result file (the completion
-        marker), each atomically. ``boxes``: ``(n, 4)`` 0-based; ``times``: ``(n,)`` s."""
+        marker), then its record (when given: what it started from, see
+        :meth:`record_problem`), each atomically. ``boxes``: ``(n, 4)`` 0-based; ``times``:
+        ``(n,)`` s. The old record goes first, so a record never describes another result."""
+        self._checked(self.record_path(tracker, sequence, repeat)).unlink(missing_ok=True)
         if times is not None:
             text = "".join(f"{float(t):.9f}\n" for t in np.asarray(times, dtype=np.float64).ravel())
             self.write_text(self.times_path(tracker, sequence, repeat), text)
-        return write_boxes(self._checked(self.result_path(tracker, sequence, repeat)), boxes)
+        path = write_boxes(self._checked(self.result_path(tracker, sequence, repeat)), boxes)
+        if record is not None:
+            self.write_text(self.record_path(tracker, sequence, repeat), json.dumps(record, indent=1) + "\n")
+        return path
 
     # ------------------------------------------------------------------ reading our own files
     def read_result(self, tracker: str, sequence: str, repeat: int = 0, n_frames: int | None = None) -> np.ndarray:
@@ -301,6 +325,33 @@ class RunDir:
         bad = ~np.isfinite(boxes).all(axis=1)
         if bad.any():
             return f"{path.relative_to(self.root)}, line {int(np.argmax(bad)) + 1}: not a finite box"
+        return None
+
+    def read_record(self, tracker: str, sequence: str, repeat: int = 0) -> dict | None:
+        """The pair's record (:meth:`write_result`), or None when there is none or it cannot
+        be read as a JSON object."""
+        try:
+            record = json.loads(self.record_path(tracker, sequence, repeat).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return None
+        return record if isinstance(record, dict) else None
+
+    def record_problem(self, tracker: str, sequence: str, expected: dict, repeat: int = 0) -> str | None:
+        """None when the pair's complete result was made from ``expected`` (the record this
+        command would write: ``first_box`` 1-based, ``n_frames``, ``sequence_frames``,
+        ``seed``, ``settings``); otherwise what differs, naming the file and the sequence.
+
+        A result without a record (a command killed between the two writes) is checked by
+        its first line, which is the first box it started from."""
+        rel = self.result_path(tracker, sequence, repeat).relative_to(self.root)
+        record = self.read_record(tracker, sequence, repeat)
+        if record is None:
+            first = self.read_result(tracker, sequence, repeat)[0].tolist()
+            record = {**expected, "first_box": first}
+        for key, new in expected.items():
+            old = record.get(key)
+            if old != new:
+                return f"{rel}: {_record_change(sequence, key, old, new)}"
         return None
 
     def read_times(self, tracker: str, sequence: str, repeat: int = 0) -> np.ndarray | None:
@@ -385,13 +436,18 @@ class RunDir:
         attributes=None,
         published=None,
         overwrite: bool = False,
+        tracker_settings: dict | None = None,
     ) -> tuple[RunInfo, list[str]]:
         """Check this command's settings against the folder's and write ``run.json``.
 
         A folder keeps one dataset and one frame limit: a different one is a RunDirError
         naming both, unless ``overwrite`` (then results, errors and report are removed
-        first). ``repeat`` None takes the folder's count; a larger one is stored (later
-        repeats are added), a smaller one is used for this command only. Tracker and
+        first). It keeps each tracker's settings (``tracker_settings``: ``{tracker: record}``
+        of :mod:`.settings`): different ones, or results of a tracker with no record (made
+        before records existed: their settings are unknown), are a RunDirError naming what
+        differs, unless ``overwrite`` (then that tracker's results, its errors and the report
+        are removed first). ``repeat`` None takes the folder's count; a larger one is stored
+        (later repeats are added), a smaller one is used for this command only. Tracker and
         sequence lists are merged (first-seen order). Returns ``(info, notes)``; the
         returned ``info.repeat`` is this command's count. Call under :meth:`locked`.
         """
@@ -407,6 +463,7 @@ class RunDir:
                 notes.append(self._wipe())
                 old = None
         info = old or RunInfo()
+        notes += self._settle_trackers(info, tracker_settings or {}, overwrite)
         stored = info.repeat
         info.dataset = str(dataset)
         info.trackers = _merge(info.trackers, trackers)
@@ -452,6 +509,46 @@ class RunDir:
             p.unlink(missing_ok=True)
         if stale:
             notes.append(f"removed {len(stale)} temporary file(s) left by an interrupted command")
+
+    def _settle_trackers(self, info: RunInfo, settings: dict, overwrite: bool) -> list[str]:
+        """Check each tracker's settings against ``info``'s record (see :meth:`settle`) and
+        enter them there; RunDirError naming the first clash, unless ``overwrite``."""
+        clashes = {name: why for name, record in settings.items() if (why := self._tracker_clash(info, name, record))}
+        if clashes and not overwrite:
+            name, why = next(iter(clashes.items()))
+            raise RunDirError(
+                f"{self.root}: {why}. Repeat the settings it was made with to resume it, choose another "
+                f"--out, or pass --overwrite to discard the results of {name}"
+            )
+        notes = [self._wipe_tracker(name) for name in clashes]
+        info.tracker_settings.update(settings)
+        return notes
+
+    def _tracker_clash(self, info: RunInfo, name: str, record: dict) -> str | None:
+        """Why ``name``'s results in this folder cannot be resumed with ``record``, or None."""
+        old = info.tracker_settings.get(name)
+        if old is None:
+            base = self.tracker_dir(name)
+            if any(base.glob("*.txt")) or any(base.glob("repeat-*/*.txt")):
+                return (
+                    f"results/{name} holds results made before run folders recorded tracker settings "
+                    f"(run.json has none for {name}), so they cannot be checked against this command's"
+                )
+            return None
+        why = settings_difference(old, record)
+        return None if why is None else f"results/{name} was made with other settings than this command's ({why})"
+
+    def _wipe_tracker(self, name: str) -> str:
+        """Remove ``results/<name>``, its errors and report/ (for ``--overwrite``); say so."""
+        base = self.tracker_dir(name)
+        n = sum(1 for p in base.rglob("*.txt")) if base.is_dir() and not base.is_symlink() else 0
+        for folder in (base, self.report_dir):
+            if folder.is_symlink():
+                folder.unlink()
+            elif folder.exists():
+                shutil.rmtree(folder)
+        self.errors().drop(lambda t, s, r: t != name)
+        return f"--overwrite: removed {n} result/times file(s) of {name}, its errors and report/ of {self.root}"
 
     def _wipe(self) -> str:
         """Remove results/, errors.json and report/ (for ``--overwrite``); say what went."""
@@ -509,6 +606,23 @@ def _real_files(top: Path) -> Iterator[Path]:
     for folder, _, files in os.walk(top, followlinks=False):
         for name in files:
             yield Path(folder) / name
+
+
+def _record_change(sequence: str, key: str, old, new) -> str:
+    """What changed between a result's record and this command's, in words."""
+
+    def box(b) -> str:
+        return ",".join(f"{float(v):.10g}" for v in b) if isinstance(b, list) else repr(b)
+
+    if key == "first_box":
+        return f"{sequence}'s first ground-truth box is now {box(new)}; the result started from {box(old)}"
+    if key == "sequence_frames":
+        return f"{sequence} now has {new} frames; the result was made when it had {old}"
+    if key == "n_frames":
+        return f"{new} frames of {sequence} to run; the result was made for {old}"
+    if key == "settings":
+        return f"made with other tracker settings than this command's (digest {old}, now {new})"
+    return f"made with {key} {old!r}; this command uses {new!r}"
 
 
 def _merge(old: Iterable, new: Iterable) -> list:
