@@ -9,6 +9,12 @@ edit a ground truth make their own copy).
 from __future__ import annotations
 
 import json
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 import cv2
@@ -247,3 +253,106 @@ def test_every_repeat_of_a_changed_sequence_is_recomputed(tmp_path):
         assert np.isfinite(RunDir(run_dir).read_result("test-jitter", "SquareC", 1, 12)).all()
     finally:
         unregister_tracker("test-jitter")
+
+
+# ----------------------------------------------------------------------------- fault injection
+
+
+_EXIT = {  # what a killed evaluate may return: its own code, or the signal's before its handlers exist
+    signal.SIGKILL: {-signal.SIGKILL},
+    signal.SIGINT: {130, -signal.SIGINT},
+    signal.SIGTERM: {143, -signal.SIGTERM},
+}
+
+
+def _evaluate_command(dataset: Path, run_dir: Path) -> list[str]:
+    src = Path(__file__).resolve().parents[1] / "src"
+    return [
+        sys.executable,
+        "-c",
+        f"import sys; sys.path.insert(0, {str(src)!r}); from smtmvt.cli import main; sys.exit(main())",
+        "evaluate",
+        "--dataset",
+        str(dataset),
+        "--out",
+        str(run_dir),
+        "--trackers",
+        "opencv-kcf,opencv-mosse",
+        "--no-report",
+        "--quiet",
+    ]
+
+
+def _outside(root: Path, runs: Path) -> dict:
+    """``{path: (bytes, mtime_ns, mode)}`` of every file under ``root`` but outside ``runs``."""
+    return {
+        p: (p.read_bytes(), p.stat().st_mtime_ns, p.stat().st_mode)
+        for p in sorted(root.rglob("*"))
+        if p.is_file() and runs not in p.parents
+    }
+
+
+def _run_files(run_dir: Path) -> dict:
+    """``{relative path: bytes}`` of a run folder, times files (seconds: never the same) and
+    the lock (it names the pid) left out."""
+    return {k: v for k, v in snapshot(run_dir).items() if "/times/" not in k and k != ".lock"}
+
+
+def _kill_at_a_random_moment(proc, run_dir: Path, sig, rng: random.Random, duration: float) -> None:
+    """Send ``sig`` to ``proc`` at a moment drawn from ``rng``: a time after its start
+    (``duration``: an uninterrupted run's), or just after its n-th result file appears."""
+    target = rng.randint(1, 8)
+    if rng.random() < 0.4 or len(list(run_dir.glob("results/*/*.txt"))) >= target:
+        time.sleep(rng.uniform(0.1, 1.0) * duration)
+    else:
+        deadline = time.monotonic() + 3 * duration
+        while proc.poll() is None and time.monotonic() < deadline:
+            if len(list(run_dir.glob("results/*/*.txt"))) >= target:
+                break
+            time.sleep(0.002)
+        time.sleep(rng.uniform(0.0, 0.02))
+    proc.send_signal(sig)
+
+
+def test_evaluate_killed_at_random_moments_resumes_to_the_uninterrupted_results(tmp_path):
+    """SIGKILL, SIGINT or SIGTERM at moments drawn from a fixed seed (10 kills over 6 runs,
+    some killed again while resuming): each resumed run's folder is byte for byte the
+    uninterrupted one's (times files aside), what was written before a kill is kept, not
+    redone, and no file outside the run folder (the dataset, a user's hidden temporaries
+    beside it) is touched."""
+    specs = {f"Seq{k}": dict(start=(12 + 4 * k, 20), step=(1.0, 0.5), side=(24, 22)) for k in range(4)}
+    dataset = make_otb_dataset(tmp_path / "otb", specs=specs, n_frames=30, size=(80, 100))
+    (dataset / ".notes.txt.a1b2c3d4.tmp").write_text("a user's")
+    (tmp_path / ".draft.md.a1b2c3d4.tmp").write_text("a user's")
+    runs = tmp_path / "runs"
+    runs.mkdir()
+    env = {**os.environ, "OMP_NUM_THREADS": "1"}
+    t0 = time.perf_counter()
+    reference = subprocess.run(_evaluate_command(dataset, runs / "reference"), env=env, capture_output=True, text=True)
+    duration = time.perf_counter() - t0
+    assert reference.returncode == 0, reference.stderr
+    expected = _run_files(runs / "reference")
+    assert len([k for k in expected if k.endswith(".txt")]) == 8
+    outside = _outside(tmp_path, runs)
+
+    rng = random.Random(46)
+    plan = [[rng.choice(list(_EXIT)) for _ in range(n)] for n in (1, 2, 1, 2, 1, 3)]
+    interrupted = 0
+    for k, signals in enumerate(plan):
+        run_dir = runs / f"run-{k}"
+        for sig in signals:
+            cmd = _evaluate_command(dataset, run_dir)
+            proc = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+            _kill_at_a_random_moment(proc, run_dir, sig, rng, duration)
+            _, err = proc.communicate(timeout=60)
+            assert proc.returncode in _EXIT[sig] | {0}, (sig, proc.returncode, err.decode())
+            interrupted += proc.returncode != 0
+            kept = {k: v for k, v in _run_files(run_dir).items() if k.endswith(".txt")} if run_dir.is_dir() else {}
+            assert all(expected[k] == v for k, v in kept.items())  # what is there is whole and right
+        stamps = {p: p.stat().st_mtime_ns for p in run_dir.rglob("*.txt")} if run_dir.is_dir() else {}
+        resumed = subprocess.run(_evaluate_command(dataset, run_dir), env=env, capture_output=True, text=True)
+        assert resumed.returncode == 0, resumed.stderr
+        assert _run_files(run_dir) == expected, f"run {k} after {signals}"
+        assert {p: p.stat().st_mtime_ns for p in stamps} == stamps  # kept, not redone
+        assert _outside(tmp_path, runs) == outside
+    assert interrupted >= len(plan)  # most kills landed while the command was working
