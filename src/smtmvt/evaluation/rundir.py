@@ -516,10 +516,10 @@ class RunDir:
         clashes = {name: why for name, record in settings.items() if (why := self._tracker_clash(info, name, record))}
         if clashes and not overwrite:
             name, why = next(iter(clashes.items()))
-            raise RunDirError(
-                f"{self.root}: {why}. Repeat the settings it was made with to resume it, choose another "
-                f"--out, or pass --overwrite to discard the results of {name}"
-            )
+            steps = ["choose another --out", f"pass --overwrite to discard the results of {name}"]
+            if name in info.tracker_settings:  # known settings: the same ones resume it
+                steps.insert(0, "repeat the settings it was made with to resume it")
+            raise RunDirError(f"{self.root}: {why}. Either {', '.join(steps[:-1])}, or {steps[-1]}")
         notes = [self._wipe_tracker(name) for name in clashes]
         info.tracker_settings.update(settings)
         return notes
@@ -612,7 +612,10 @@ def _record_change(sequence: str, key: str, old, new) -> str:
     """What changed between a result's record and this command's, in words."""
 
     def box(b) -> str:
-        return ",".join(f"{float(v):.10g}" for v in b) if isinstance(b, list) else repr(b)
+        try:
+            return ",".join(f"{float(v):.10g}" for v in b)
+        except (TypeError, ValueError):
+            return repr(b)
 
     if key == "first_box":
         return f"{sequence}'s first ground-truth box is now {box(new)}; the result started from {box(old)}"
