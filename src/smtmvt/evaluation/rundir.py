@@ -297,8 +297,12 @@ class RunDir:
             self.write_text(self.times_path(tracker, sequence, repeat), text)
         path = write_boxes(self._checked(self.result_path(tracker, sequence, repeat)), boxes)
         if record is not None:
-            self.write_text(self.record_path(tracker, sequence, repeat), json.dumps(record, indent=1) + "\n")
+            self.write_record(tracker, sequence, record, repeat)
         return path
+
+    def write_record(self, tracker: str, sequence: str, record: dict, repeat: int = 0) -> Path:
+        """Write the pair's record (what its result started from), atomically."""
+        return self.write_text(self.record_path(tracker, sequence, repeat), json.dumps(record, indent=1) + "\n")
 
     # ------------------------------------------------------------------ reading our own files
     def read_result(self, tracker: str, sequence: str, repeat: int = 0, n_frames: int | None = None) -> np.ndarray:
@@ -342,7 +346,8 @@ class RunDir:
         ``seed``, ``settings``); otherwise what differs, naming the file and the sequence.
 
         A result without a record (a command killed between the two writes) is checked by
-        its first line, which is the first box it started from."""
+        its first line, which is the first box it started from (the rest is checked for the
+        whole tracker by :meth:`settle`); when it passes, the caller writes its record."""
         rel = self.result_path(tracker, sequence, repeat).relative_to(self.root)
         record = self.read_record(tracker, sequence, repeat)
         if record is None:

@@ -317,6 +317,8 @@ def _plan(
                 why = run.result_problem(spec.name, seq.name, n, r)
                 why = why or run.record_problem(spec.name, seq.name, record, r)
                 if why is None:
+                    if run.read_record(spec.name, seq.name, r) is None:  # killed between the writes
+                        run.write_record(spec.name, seq.name, record, r)
                     result.skipped.append(_pair_id(spec.name, seq.name, r))
                     book.log.clear(spec.name, seq.name, r)
                     continue
