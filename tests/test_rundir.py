@@ -117,7 +117,7 @@ def test_settle_keeps_one_frame_limit_and_repeat_count(tmp_path):
 def test_a_folder_with_results_but_no_run_json_is_not_taken_over(tmp_path):
     (tmp_path / "results" / "x").mkdir(parents=True)
     (tmp_path / "results" / "x" / "S.txt").write_text("1,1,1,1\n")
-    with pytest.raises(RunDirError, match="not a run folder of ours"):
+    with pytest.raises(RunDirError, match=r"is not a run folder \(no run.json\) and is not empty \(results\)"):
         RunDir(tmp_path).settle(tmp_path, trackers=["a"], sequences=["S"], max_frames=None, repeat=None)
 
 
@@ -154,8 +154,80 @@ def test_run_info_round_trip():
 def test_temporaries_of_a_killed_command_are_removed_on_the_next_start(tmp_path):
     run = RunDir(tmp_path / "run")
     run.settle(tmp_path, trackers=["a"], sequences=["S"], max_frames=None, repeat=None)
-    stale = run.results_dir / "a" / ".S.txt.x1y2.tmp"  # what SIGKILL during a write leaves
+    stale = run.results_dir / "a" / ".S.txt.x1y2z3w4.tmp"  # what SIGKILL during a write leaves
     stale.parent.mkdir(parents=True)
     stale.write_text("1,1")
     _, notes = run.settle(tmp_path, trackers=["a"], sequences=["S"], max_frames=None, repeat=None)
     assert not stale.exists() and any("removed 1 temporary file" in n for n in notes)
+
+
+# ----------------------------------------------------------------------------- issue 46: nothing lost
+
+
+def _tree(root: Path) -> dict:
+    """``{relative path: bytes}`` of every file under ``root`` (links as their target)."""
+    return {
+        p.relative_to(root).as_posix(): (os.readlink(p).encode() if p.is_symlink() else p.read_bytes())
+        for p in sorted(root.rglob("*"))
+        if p.is_file() or p.is_symlink()
+    }
+
+
+@pytest.mark.parametrize("create", [False, True])
+def test_a_folder_that_is_not_a_run_is_refused_and_left_as_it_is(tmp_path, create):
+    docs = tmp_path / "docs"  # a user's folder: a git work tree with hidden temporaries
+    (docs / ".git" / "objects").mkdir(parents=True)
+    (docs / ".git" / "objects" / ".pack.x1y2z3w4.tmp").write_text("git's")
+    (docs / ".notes.txt.abcdefgh.tmp").write_text("an editor's")
+    (docs / "notes.txt").write_text("mine")
+    before = _tree(docs)
+    run = RunDir(docs)
+    with pytest.raises(RunDirError, match=rf"{docs} is not a run folder \(no run.json\) and is not empty"):
+        if create:
+            with run.locked("smtmvt evaluate", create=True):
+                pass
+        else:
+            run.settle(tmp_path, trackers=["a"], sequences=["S"], max_frames=None, repeat=None)
+    assert _tree(docs) == before and not (docs / ".lock").exists()
+
+
+def test_a_new_or_empty_folder_or_one_left_before_run_json_becomes_a_run(tmp_path):
+    for folder in (tmp_path / "new", tmp_path / "empty"):
+        (tmp_path / "empty").mkdir(exist_ok=True)
+        with RunDir(folder).locked("smtmvt evaluate", create=True) as run:
+            run.settle(tmp_path, trackers=["a"], sequences=["S"], max_frames=None, repeat=None)
+        assert RunDir(folder).info().trackers == ["a"]
+    left = tmp_path / "left"  # a command killed after taking the lock, while writing run.json
+    left.mkdir()
+    (left / ".lock").write_text("smtmvt evaluate (pid 1)\n")
+    (left / ".run.json.k1l2m3n4.tmp").write_text("{")
+    with RunDir(left).locked("smtmvt evaluate", create=True) as run:
+        _, notes = run.settle(tmp_path, trackers=["a"], sequences=["S"], max_frames=None, repeat=None)
+    assert sorted(p.name for p in left.iterdir()) == [".lock", "run.json"]
+    assert any("removed 1 temporary file" in n for n in notes)
+
+
+def test_clean_up_touches_only_the_files_the_run_writes(tmp_path):
+    run = RunDir(tmp_path / "run")
+    run.settle(tmp_path, trackers=["a"], sequences=["S"], max_frames=None, repeat=None)
+    run.write_result("a", "S", np.ones((2, 4)), times=[0.1, 0.2], repeat=1)
+    ours = [  # what SIGKILL during a write of the run leaves
+        run.root / ".errors.json.q1w2e3r4.tmp",
+        run.root / ".run.json.q1w2e3r4.tmp",
+        run.result_path("a", "S").parent / ".S.txt.q1w2e3r4.tmp",
+        run.times_path("a", "S", 1).parent / ".S_time.txt.q1w2e3r4.tmp",
+        run.report_dir / ".table.md.q1w2e3r4.tmp",
+    ]
+    theirs = [  # a user's own files in the run folder, or reached through a link in it
+        run.root / ".notes.md.q1w2e3r4.tmp",
+        run.root / "notes" / ".draft.q1w2e3r4.tmp",
+        tmp_path / "elsewhere" / ".x.txt.q1w2e3r4.tmp",
+    ]
+    for p in ours + theirs:
+        p.parent.mkdir(parents=True, exist_ok=True)
+        p.write_text("partial")
+    os.symlink(tmp_path / "elsewhere", run.results_dir / "a" / "linked")
+    _, notes = run.settle(tmp_path, trackers=["a"], sequences=["S"], max_frames=None, repeat=None)
+    assert [p for p in ours if p.exists()] == []
+    assert [p for p in theirs if not p.exists()] == []
+    assert any(f"removed {len(ours)} temporary file" in n for n in notes)

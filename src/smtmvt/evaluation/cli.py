@@ -9,8 +9,9 @@
     gap, **1 when any pair failed, a tracker/sequence name was unknown or the report has
     gaps** (the other pairs still ran, the errors are printed and kept in
     ``RUN_DIR/errors.json``, and the report is still built), 2 for a problem with the whole
-    command (no dataset folder, a run folder of another dataset or frame limit, a folder in
-    use by another command, an unreachable scheduler), printed as one ``error:`` line;
+    command (no dataset folder, a run folder of another dataset or frame limit, a folder that
+    is neither empty nor a run folder, a folder in use by another command, an unreachable
+    scheduler), printed as one ``error:`` line;
     130 after Ctrl-C, 143 after SIGTERM (the run stops cleanly, its workers with it).
 
 ``smtmvt report RUN_DIR``
@@ -62,7 +63,7 @@ def _add_evaluate(subparsers) -> None:
         metavar="NAMES",
         help=f"comma-separated names; available: {', '.join(available_trackers())}",
     )
-    add("--out", required=True, metavar="RUN_DIR", help="run folder (created, or resumed)")
+    add("--out", required=True, metavar="RUN_DIR", help="run folder: a new or empty folder, or a run folder to resume")
     add("--sequences", metavar="NAMES", help="comma-separated sequence names (default: all; case-insensitive)")
     add("--workers", type=positive_int, default=1, metavar="N", help="local worker processes (default 1)")
     add(
@@ -85,7 +86,12 @@ def _add_evaluate(subparsers) -> None:
         help=f"run each stochastic tracker N times per sequence with N seeds, N <= {MAX_REPEAT} (deterministic ones once); "
         "the report gives mean and std. Default: the run folder's count (1 for a new one)",
     )
-    add("--overwrite", action="store_true", help="discard RUN_DIR's results if it was made with another --max-frames")
+    add(
+        "--overwrite",
+        action="store_true",
+        help="discard RUN_DIR's results if it was made with another --max-frames, "
+        "or a tracker's results if they were made with other tracker settings",
+    )
     add(
         "--tracker-option",
         action="append",

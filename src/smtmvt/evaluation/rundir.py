@@ -3,13 +3,16 @@
 Layout (``RUN_DIR`` = :attr:`RunDir.root`)::
 
     run.json                                   settings (RunInfo): dataset, trackers, sequences,
-                                               attributes, published, max_frames, repeat
+                                               attributes, published, max_frames, repeat,
+                                               tracker_settings (per tracker, see .settings)
     errors.json                                [{"tracker", "sequence", "repeat", "error"}, ...]
     .lock                                      held (flock) by the command working on the run
     results/<tracker>/<seq>.txt                repeat 0: 1-based x,y,w,h per frame (got10k/pysot)
     results/<tracker>/times/<seq>_time.txt     seconds per frame of repeat 0
+    results/<tracker>/meta/<seq>.json          what the result started from: first box, frames,
+                                               seed, settings digest (no meta: imported)
     results/<tracker>/repeat-<r>/<seq>.txt     repeat r = 1..N-1 (the same layout one level down)
-    results/<tracker>/repeat-<r>/times/<seq>_time.txt
+    results/<tracker>/repeat-<r>/times/<seq>_time.txt, .../repeat-<r>/meta/<seq>.json
     results/<tracker>/import.json              only for imported trackers: provenance
     report/                                    summary.json, table.md/.csv, plots, index.html
 
@@ -39,6 +42,7 @@ import numpy as np
 
 from ..data import SequenceError, read_boxes, write_boxes, write_bytes_atomic
 from ..data.files import read_regular_bytes
+from .settings import settings_difference
 
 __all__ = [
     "RunDir",
@@ -56,6 +60,7 @@ LOCK = ".lock"
 RESULTS = "results"
 REPORT = "report"
 IMPORT_JSON = "import.json"
+META = "meta"
 _TRACKER_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]*")
 _REPEAT_DIR = re.compile(r"repeat-([1-9][0-9]*)")
 #: the most repeats a run may hold (``--repeat``): each is a whole pass over the dataset
@@ -101,6 +106,8 @@ class RunInfo:
 
     ``max_frames`` None means every frame; ``repeat`` is the number of repeats of the
     stochastic trackers the folder holds (1 for runs made before repeats existed).
+    ``tracker_settings``: ``{tracker: settings record}`` (:mod:`.settings`) of the computed
+    trackers (empty for runs made before it was recorded).
     Keys of ``run.json`` not listed here are kept in ``extra`` and written back.
     """
 
@@ -111,6 +118,7 @@ class RunInfo:
     published: str | None = None
     max_frames: int | None = None
     repeat: int = 1
+    tracker_settings: dict = field(default_factory=dict)
     extra: dict = field(default_factory=dict)
 
     @classmethod
@@ -126,6 +134,10 @@ class RunInfo:
                 raise RunDirError(f"{path}: {key} must be a whole number >= 1, got {value!r}")
         if info.repeat > MAX_REPEAT:
             raise RunDirError(f"{path}: repeat must be at most {MAX_REPEAT}, got {info.repeat!r}")
+        settings = data.get("tracker_settings") or {}
+        if not isinstance(settings, dict) or not all(isinstance(v, dict) for v in settings.values()):
+            raise RunDirError(f"{path}: tracker_settings must map tracker names to objects")
+        info.tracker_settings = dict(settings)
         return info
 
     def to_json(self) -> dict:
@@ -175,8 +187,9 @@ class RunDir:
     """A run folder (see the module docstring for its layout).
 
     ``RunDir(path)`` does no I/O. The folder is a run once it has ``run.json``
-    (:meth:`create` / :meth:`settle` writes it); the report and imports refuse a folder that
-    is not (:meth:`info`).
+    (:meth:`settle` writes it); the report and imports refuse a folder that is not
+    (:meth:`info`), and ``evaluate`` makes a run only of a new or empty folder
+    (:meth:`check_can_hold_run`).
     """
 
     def __init__(self, root) -> None:
@@ -220,6 +233,10 @@ class RunDir:
     def times_path(self, tracker: str, sequence: str, repeat: int = 0) -> Path:
         """``results/<tracker>[/repeat-<r>]/times/<sequence>_time.txt``."""
         return self.tracker_dir(tracker, repeat) / "times" / f"{check_sequence_name(sequence)}_time.txt"
+
+    def record_path(self, tracker: str, sequence: str, repeat: int = 0) -> Path:
+        """``results/<tracker>[/repeat-<r>]/meta/<sequence>.json``: what the result started from."""
+        return self.tracker_dir(tracker, repeat) / META / f"{check_sequence_name(sequence)}.json"
 
     def import_json(self, tracker: str) -> Path:
         return self.tracker_dir(tracker) / IMPORT_JSON
@@ -272,13 +289,25 @@ class RunDir:
     def write_text(self, path, text: str) -> Path:
         return self.write_bytes(path, text.encode("utf-8"))
 
-    def write_result(self, tracker: str, sequence: str, boxes, times=None, repeat: int = 0) -> Path:
+    def write_result(
+        self, tracker: str, sequence: str, boxes, times=None, repeat: int = 0, record: dict | None = None
+    ) -> Path:
         """Write one pair's times file (when given), then its result file (the completion
-        marker), each atomically. ``boxes``: ``(n, 4)`` 0-based; ``times``: ``(n,)`` s."""
+        marker), then its record (when given: what it started from, see
+        :meth:`record_problem`), each atomically. ``boxes``: ``(n, 4)`` 0-based; ``times``:
+        ``(n,)`` s. The old record goes first, so a record never describes another result."""
+        self._checked(self.record_path(tracker, sequence, repeat)).unlink(missing_ok=True)
         if times is not None:
             text = "".join(f"{float(t):.9f}\n" for t in np.asarray(times, dtype=np.float64).ravel())
             self.write_text(self.times_path(tracker, sequence, repeat), text)
-        return write_boxes(self._checked(self.result_path(tracker, sequence, repeat)), boxes)
+        path = write_boxes(self._checked(self.result_path(tracker, sequence, repeat)), boxes)
+        if record is not None:
+            self.write_record(tracker, sequence, record, repeat)
+        return path
+
+    def write_record(self, tracker: str, sequence: str, record: dict, repeat: int = 0) -> Path:
+        """Write the pair's record (what its result started from), atomically."""
+        return self.write_text(self.record_path(tracker, sequence, repeat), json.dumps(record, indent=1) + "\n")
 
     # ------------------------------------------------------------------ reading our own files
     def read_result(self, tracker: str, sequence: str, repeat: int = 0, n_frames: int | None = None) -> np.ndarray:
@@ -305,6 +334,34 @@ class RunDir:
         bad = ~np.isfinite(boxes).all(axis=1)
         if bad.any():
             return f"{path.relative_to(self.root)}, line {int(np.argmax(bad)) + 1}: not a finite box"
+        return None
+
+    def read_record(self, tracker: str, sequence: str, repeat: int = 0) -> dict | None:
+        """The pair's record (:meth:`write_result`), or None when there is none or it cannot
+        be read as a JSON object."""
+        try:
+            record = json.loads(self.record_path(tracker, sequence, repeat).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return None
+        return record if isinstance(record, dict) else None
+
+    def record_problem(self, tracker: str, sequence: str, expected: dict, repeat: int = 0) -> str | None:
+        """None when the pair's complete result was made from ``expected`` (the record this
+        command would write: ``first_box`` 1-based, ``n_frames``, ``sequence_frames``,
+        ``seed``, ``settings``); otherwise what differs, naming the file and the sequence.
+
+        A result without a record (a command killed between the two writes) is checked by
+        its first line, which is the first box it started from (the rest is checked for the
+        whole tracker by :meth:`settle`); when it passes, the caller writes its record."""
+        rel = self.result_path(tracker, sequence, repeat).relative_to(self.root)
+        record = self.read_record(tracker, sequence, repeat)
+        if record is None:
+            first = self.read_result(tracker, sequence, repeat)[0].tolist()
+            record = {**expected, "first_box": first}
+        for key, new in expected.items():
+            old = record.get(key)
+            if old != new:
+                return f"{rel}: {_record_change(sequence, key, old, new)}"
         return None
 
     def read_times(self, tracker: str, sequence: str, repeat: int = 0) -> np.ndarray | None:
@@ -365,6 +422,7 @@ class RunDir:
                 self._lock_depth -= 1
             return
         if create:
+            self.check_can_hold_run()
             self.root.mkdir(parents=True, exist_ok=True)
         else:
             self.info()
@@ -388,17 +446,23 @@ class RunDir:
         attributes=None,
         published=None,
         overwrite: bool = False,
+        tracker_settings: dict | None = None,
     ) -> tuple[RunInfo, list[str]]:
         """Check this command's settings against the folder's and write ``run.json``.
 
         A folder keeps one dataset and one frame limit: a different one is a RunDirError
         naming both, unless ``overwrite`` (then results, errors and report are removed
-        first). ``repeat`` None takes the folder's count; a larger one is stored (later
-        repeats are added), a smaller one is used for this command only. Tracker and
+        first). It keeps each tracker's settings (``tracker_settings``: ``{tracker: record}``
+        of :mod:`.settings`): different ones, or results of a tracker with no record (made
+        before records existed: their settings are unknown), are a RunDirError naming what
+        differs, unless ``overwrite`` (then that tracker's results, its errors and the report
+        are removed first). ``repeat`` None takes the folder's count; a larger one is stored
+        (later repeats are added), a smaller one is used for this command only. Tracker and
         sequence lists are merged (first-seen order). Returns ``(info, notes)``; the
         returned ``info.repeat`` is this command's count. Call under :meth:`locked`.
         """
         notes: list[str] = []
+        self.check_can_hold_run()
         self._remove_stale_temporaries(notes)
         old = self._read_info() if self.run_json.is_file() else None
         if old is not None:
@@ -408,11 +472,8 @@ class RunDir:
             if clash:
                 notes.append(self._wipe())
                 old = None
-        elif self.results_dir.exists() and any(self.results_dir.iterdir()):
-            raise RunDirError(
-                f"{self.root} has results/ but no {RUN_JSON}: not a run folder of ours; choose another --out"
-            )
         info = old or RunInfo()
+        notes += self._settle_trackers(info, tracker_settings or {}, overwrite)
         stored = info.repeat
         info.dataset = str(dataset)
         info.trackers = _merge(info.trackers, trackers)
@@ -427,15 +488,77 @@ class RunDir:
             notes.append(f"{self.root} holds {info.repeat} repeats; this command uses the first {wanted}")
         return RunInfo(**{**asdict(info), "repeat": wanted}), notes
 
+    def check_can_hold_run(self) -> None:
+        """RunDirError unless the folder is missing, empty, a run (``run.json``), or holds only
+        what a command stopped before writing ``run.json`` leaves (``.lock``, the temporary
+        file of ``run.json``). Reads only: a folder that is refused is left as it is."""
+        if not self.root.exists():
+            return
+        if not self.root.is_dir():
+            raise RunDirError(f"{self.root} is not a folder; choose another --out")
+        if self.run_json.is_file():
+            return
+        foreign = sorted(p.name for p in self.root.iterdir() if not _is_left_before_run_json(p))
+        if foreign:
+            shown = ", ".join(foreign[:3]) + (", ..." if len(foreign) > 3 else "")
+            raise RunDirError(
+                f"{self.root} is not a run folder (no {RUN_JSON}) and is not empty ({shown}); "
+                f"nothing in it was changed. Choose a new or empty folder for --out"
+            )
+
     def _remove_stale_temporaries(self, notes: list[str]) -> None:
         """Delete the temporary files of atomic writes that a killed command left (hidden
-        ``.<name>.<random>.tmp`` beside their target; no reader ever takes them for results).
-        Safe under the lock: no other command is writing."""
-        stale = [p for p in self.root.rglob(".*.tmp") if p.is_file()] if self.root.is_dir() else []
+        ``.<name>.<random>.tmp`` beside their target; no reader ever takes them for results),
+        only where the run writes: beside ``run.json`` and ``errors.json``, and in its own
+        ``results/`` and ``report/`` trees (real folders only, no link followed). Safe under
+        the lock: no other command is writing."""
+        stale = [p for p in self.root.glob(".*.tmp") if _is_temporary_of(p, (RUN_JSON, ERRORS_JSON))]
+        for top in (self.results_dir, self.report_dir):
+            stale += [p for p in _real_files(top) if _is_temporary_of(p)]
         for p in stale:
             p.unlink(missing_ok=True)
         if stale:
             notes.append(f"removed {len(stale)} temporary file(s) left by an interrupted command")
+
+    def _settle_trackers(self, info: RunInfo, settings: dict, overwrite: bool) -> list[str]:
+        """Check each tracker's settings against ``info``'s record (see :meth:`settle`) and
+        enter them there; RunDirError naming the first clash, unless ``overwrite``."""
+        clashes = {name: why for name, record in settings.items() if (why := self._tracker_clash(info, name, record))}
+        if clashes and not overwrite:
+            name, why = next(iter(clashes.items()))
+            steps = ["choose another --out", f"pass --overwrite to discard the results of {name}"]
+            if name in info.tracker_settings:  # known settings: the same ones resume it
+                steps.insert(0, "repeat the settings it was made with to resume it")
+            raise RunDirError(f"{self.root}: {why}. Either {', '.join(steps[:-1])}, or {steps[-1]}")
+        notes = [self._wipe_tracker(name) for name in clashes]
+        info.tracker_settings.update(settings)
+        return notes
+
+    def _tracker_clash(self, info: RunInfo, name: str, record: dict) -> str | None:
+        """Why ``name``'s results in this folder cannot be resumed with ``record``, or None."""
+        old = info.tracker_settings.get(name)
+        if old is None:
+            base = self.tracker_dir(name)
+            if any(base.glob("*.txt")) or any(base.glob("repeat-*/*.txt")):
+                return (
+                    f"results/{name} holds results made before run folders recorded tracker settings "
+                    f"(run.json has none for {name}), so they cannot be checked against this command's"
+                )
+            return None
+        why = settings_difference(old, record)
+        return None if why is None else f"results/{name} was made with other settings than this command's ({why})"
+
+    def _wipe_tracker(self, name: str) -> str:
+        """Remove ``results/<name>``, its errors and report/ (for ``--overwrite``); say so."""
+        base = self.tracker_dir(name)
+        n = sum(1 for p in base.rglob("*.txt")) if base.is_dir() and not base.is_symlink() else 0
+        for folder in (base, self.report_dir):
+            if folder.is_symlink():
+                folder.unlink()
+            elif folder.exists():
+                shutil.rmtree(folder)
+        self.errors().drop(lambda t, s, r: t != name)
+        return f"--overwrite: removed {n} result/times file(s) of {name}, its errors and report/ of {self.root}"
 
     def _wipe(self) -> str:
         """Remove results/, errors.json and report/ (for ``--overwrite``); say what went."""
@@ -466,6 +589,53 @@ def _settings_clash(run: RunDir, old: RunInfo, dataset: Path, max_frames: int | 
             f"--overwrite to discard its results"
         )
     return None
+
+
+#: ``.<target>.<8 random characters>.tmp``: the temporary file of an atomic write
+#: (:func:`smtmvt.data.write_bytes_atomic`, ``tempfile.mkstemp``'s names)
+_TEMPORARY = re.compile(r"\.(.+)\.[a-z0-9_]{8}\.tmp")
+
+
+def _is_temporary_of(path: Path, targets: Iterable[str] | None = None) -> bool:
+    """Whether ``path`` is a regular file named as the temporary of an atomic write (of one
+    of ``targets``, when given)."""
+    m = _TEMPORARY.fullmatch(path.name)
+    ok = m is not None and (targets is None or m.group(1) in targets)
+    return ok and path.is_file() and not path.is_symlink()
+
+
+def _is_left_before_run_json(path: Path) -> bool:
+    """``.lock`` or a temporary of ``run.json``: all a command leaves before ``run.json``."""
+    return (path.name == LOCK and path.is_file()) or _is_temporary_of(path, (RUN_JSON,))
+
+
+def _real_files(top: Path) -> Iterator[Path]:
+    """Files under ``top`` through real folders only (nothing when ``top`` is a link)."""
+    if top.is_symlink() or not top.is_dir():
+        return
+    for folder, _, files in os.walk(top, followlinks=False):
+        for name in files:
+            yield Path(folder) / name
+
+
+def _record_change(sequence: str, key: str, old, new) -> str:
+    """What changed between a result's record and this command's, in words."""
+
+    def box(b) -> str:
+        try:
+            return ",".join(f"{float(v):.10g}" for v in b)
+        except (TypeError, ValueError):
+            return repr(b)
+
+    if key == "first_box":
+        return f"{sequence}'s first ground-truth box is now {box(new)}; the result started from {box(old)}"
+    if key == "sequence_frames":
+        return f"{sequence} now has {new} frames; the result was made when it had {old}"
+    if key == "n_frames":
+        return f"{new} frames of {sequence} to run; the result was made for {old}"
+    if key == "settings":
+        return f"made with other tracker settings than this command's (digest {old}, now {new})"
+    return f"made with {key} {old!r}; this command uses {new!r}"
 
 
 def _merge(old: Iterable, new: Iterable) -> list:

@@ -26,8 +26,12 @@ While a command works on a folder it holds its lock; a second command gets a cle
 Resuming
 --------
 The unit of work is one (tracker, sequence, repeat). It is skipped when its result file is
-complete: as many well-formed, finite lines as frames to run (:meth:`RunDir.result_problem`);
-otherwise it is (re)computed, with a note saying why. Workers *return* boxes and times to
+complete: as many well-formed, finite lines as frames to run (:meth:`RunDir.result_problem`),
+and made from what this command would start it from: the same first ground-truth box,
+frame count, seed and tracker settings (its record, :meth:`RunDir.record_problem`);
+otherwise it is (re)computed, with a note saying why. A tracker's settings (options,
+resolved configuration, versions: :mod:`.settings`) are kept in ``run.json``: a command with
+other ones is refused (``overwrite=True`` discards that tracker's results first). Workers *return* boxes and times to
 the driver, which writes the times file and then the result file, each atomically: a killed
 run loses only the pairs in flight, never a finished one, and never leaves a partial result
 file. A tracker folder holding imported results (``report --import``) is never taken for
@@ -55,10 +59,13 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from ..interrupts import reraise_interruption
 from .pairs import PairOutcome, PairTask, describe, run_pair, sequence_seed
 from .progress import Progress
 from .rundir import MAX_REPEAT, RunDir, RunInfo
+from .settings import settings_digest, tracker_settings
 from .trackers import TrackerSpec, UnknownTrackerError, accepts_keyword, tracker_spec
 from .workers import probe_scheduler, run_tasks
 
@@ -189,7 +196,8 @@ def run_evaluation(
     attributes, published : paths stored in ``run.json`` and passed to the report.
     repeat : runs of each stochastic tracker per sequence (default: the folder's count, 1 for
         a new folder).
-    overwrite : discard the folder's results when its frame limit or dataset differs.
+    overwrite : discard the folder's results when its frame limit or dataset differs, and a
+        tracker's results when its settings differ.
 
     Returns
     -------
@@ -205,17 +213,19 @@ def run_evaluation(
     t_run = time.perf_counter()
     dataset_dir = Path(dataset_dir).expanduser().resolve()
     sequences = _check_arguments(dataset_dir, sequences, max_frames, workers, repeat)
+    run = RunDir(out_dir)
+    run.check_can_hold_run()  # a folder that is not a run: refused before anything else
     _check_attributes(attributes)
     tracker_options = dict(tracker_options or {})
     known, unknown = _resolve_trackers(trackers, tracker_options)
     if isinstance(scheduler, str):
         probe_scheduler(scheduler)  # a wrong address fails in seconds, before the run folder is touched
-    run = RunDir(out_dir)
     with run.locked("smtmvt evaluate", create=True):
         seqs, seq_errors, unknown_seqs = _open_sequences(dataset_dir, sequences)
         if not seqs and not seq_errors and not unknown_seqs:
             raise ValueError(f"no OTB sequence (sub-folder with img/ and groundtruth_rect.txt) in {dataset_dir}")
         names = [s.name for s in seqs] + [n for n, _ in seq_errors if n]
+        probes = {spec.name: _tracker_problem(run, spec, tracker_options.get(spec.name, {})) for spec in known}
         info, notes = run.settle(
             dataset_dir,
             trackers=[s.name for s in known],
@@ -225,6 +235,7 @@ def run_evaluation(
             attributes=attributes,
             published=published,
             overwrite=overwrite,
+            tracker_settings={name: settings for name, (_, settings) in probes.items() if settings is not None},
         )
         result = RunResult(run.root, [s.name for s in known], [s.name for s in seqs], notes=notes, repeat=info.repeat)
         if info.max_frames is not None:
@@ -235,7 +246,7 @@ def run_evaluation(
         for sname, message in unknown_seqs + seq_errors:
             for spec in known:
                 book.record(spec.name, sname, message)
-        tasks = _plan(book, known, seqs, tracker_options, parallel=scheduler is not None or workers > 1)
+        tasks = _plan(book, known, seqs, tracker_options, probes, parallel=scheduler is not None or workers > 1)
         with Progress(len(tasks), sum(t.n_frames for t in tasks), progress) as bars:
 
             def finish(task: PairTask, outcome: PairOutcome | None, failure: str | None) -> None:
@@ -282,6 +293,7 @@ class _Book:
 
     def __init__(self, run: RunDir, result: RunResult, info: RunInfo):
         self.run, self.result, self.info = run, result, info
+        self.records: dict[tuple, dict] = {}  # task.key -> what its result starts from
         self.log = run.errors()
         # Errors about names given on a previous command line (unknown tracker or sequence) are
         # properties of that command, not of the run's data: drop them, this call re-adds its own.
@@ -294,8 +306,9 @@ class _Book:
     def finish(self, task: PairTask, outcome: PairOutcome | None, failure: str | None) -> None:
         name = task.sequence.name
         if outcome is not None and outcome.ok:
+            record = self.records.get(task.key)
             try:
-                self.run.write_result(task.tracker, name, outcome.boxes, outcome.times, task.repeat)
+                self.run.write_result(task.tracker, name, outcome.boxes, outcome.times, task.repeat, record)
             except OSError as exc:  # this pair's files only (a name too long, ...): the rest go on
                 why = f"{task.tracker} on {name}: cannot write its result: {describe(exc)}"
                 self.record(task.tracker, name, why, task.repeat)
@@ -308,53 +321,77 @@ class _Book:
             self.record(task.tracker, name, str(message), task.repeat)
 
 
-def _plan(book: _Book, known: list[TrackerSpec], seqs, tracker_options: dict, parallel: bool) -> list[PairTask]:
-    """The pairs left to do (skipped ones and problems are entered in ``book``)."""
+def _plan(
+    book: _Book, known: list[TrackerSpec], seqs, tracker_options: dict, probes: dict, parallel: bool
+) -> list[PairTask]:
+    """The pairs left to do (skipped ones and problems are entered in ``book``, and what
+    each task's result starts from in ``book.records``). ``probes``: ``{tracker:
+    (problem, settings)}`` of :func:`_tracker_problem`."""
     run, info, result = book.run, book.info, book.result
     tasks: list[PairTask] = []
     for spec in known:
         options = dict(tracker_options.get(spec.name, {}))
         base_seed = options.pop("seed", 0) or 0
-        problem = _tracker_problem(run, spec, options)
+        problem, settings = probes[spec.name]
         if problem:
             book.record(spec.name, None, problem)
             continue
+        digest = settings_digest(settings)
         for seq in seqs:
             n = len(seq) if info.max_frames is None else min(len(seq), info.max_frames)
             for r in range(1 if spec.deterministic else info.repeat):
+                seed = sequence_seed(seq.name, base_seed, r)
+                record = _start_record(seq, n, seed, digest)
                 try:
                     why = run.result_problem(spec.name, seq.name, n, r)
+                    why = why or run.record_problem(spec.name, seq.name, record, r)
                 except OSError as exc:  # its result file cannot even be looked at (a name too long)
                     message = f"{spec.name} on {seq.name}: cannot check its result file: {describe(exc)}"
                     book.record(spec.name, seq.name, message, r)
                     continue
                 if why is None:
+                    if run.read_record(spec.name, seq.name, r) is None:  # killed between the writes
+                        run.write_record(spec.name, seq.name, record, r)
                     result.skipped.append(_pair_id(spec.name, seq.name, r))
                     book.log.clear(spec.name, seq.name, r)
                     continue
                 if why != "missing":
                     result.notes.append(f"{why}; recomputing")
-                seed = sequence_seed(seq.name, base_seed, r)
-                tasks.append(PairTask(spec.name, spec.factory, options, seq, n, seed, parallel, r, spec.fresh_process))
+                task = PairTask(spec.name, spec.factory, options, seq, n, seed, parallel, r, spec.fresh_process)
+                book.records[task.key] = record
+                tasks.append(task)
     return tasks
 
 
-def _tracker_problem(run: RunDir, spec: TrackerSpec, options: dict) -> str | None:
-    """Why ``spec`` cannot run into ``run`` (its folder holds imported results, or the
-    options are refused: checked once here, not once per sequence in the workers)."""
+def _start_record(seq, n_frames: int, seed: int, digest: str) -> dict:
+    """What a result of ``seq`` starts from (:meth:`RunDir.record_problem`): the first
+    ground-truth box (1-based, as the result's first line), the frames run and the
+    sequence's, the seed and the tracker settings' digest."""
+    from ..data.boxes import ONE_BASED_OFFSET
+
+    first = (np.asarray(seq.first_box, dtype=np.float64) + ONE_BASED_OFFSET).tolist()
+    return {"first_box": first, "n_frames": n_frames, "sequence_frames": len(seq), "seed": seed, "settings": digest}
+
+
+def _tracker_problem(run: RunDir, spec: TrackerSpec, options: dict) -> tuple[str | None, dict | None]:
+    """``(problem, settings)``: why ``spec`` cannot run into ``run`` (its folder holds
+    imported results, or the options are refused: checked once here, not once per sequence
+    in the workers), or None and the settings record of its results (:mod:`.settings`)."""
     if run.is_imported(spec.name):
         rel = run.tracker_dir(spec.name).relative_to(run.root)
         return (
             f"{rel} holds imported results ({rel}/import.json), not results of this run; "
             f"evaluate will not add to them: remove that folder or import under another name"
-        )
+        ), None
+    given = {k: v for k, v in options.items() if k != "seed" or v}  # no seed, seed 0: the same runs
+    options = {k: v for k, v in given.items() if k != "seed"}
     try:
         probe = {**options, "seed": 0} if accepts_keyword(spec.factory, "seed") else options
-        spec.factory(**probe)
+        tracker = spec.factory(**probe)
     except Exception as exc:  # noqa: BLE001 - any failure of the factory is the user's to see
         reraise_interruption(exc)
-        return f"{spec.name}: cannot be created with options {options}: {describe(exc)}"
-    return None
+        return f"{spec.name}: cannot be created with options {options}: {describe(exc)}", None
+    return None, tracker_settings(tracker, given)
 
 
 def _open_sequences(dataset_dir: Path, sequences):
