@@ -255,3 +255,80 @@ def test_video_sink_refuses_a_frame_of_another_size(tmp_path):
         sink.add(np.zeros((24, 32, 3), np.uint8))
         with pytest.raises(ValueError, match=r"frame 1 is 40x24 pixels, frame 0 is 32x24"):
             sink.add(np.zeros((24, 40, 3), np.uint8))
+
+
+def test_track_scores_file_has_the_trackers_confidence_and_lost(otb_folder, tmp_path):
+    """--scores: a header, then per frame the result file's box (1-based) and the
+    confidence and lost a Tracker with the same seed gives when driven by hand."""
+    from smtmvt import Tracker, TrackerConfig
+    from smtmvt.data.scores import SCORES_HEADER, read_scores
+
+    root, gt = otb_folder
+    out, scores = tmp_path / "res.txt", tmp_path / "scores.csv"
+    args = ["track", str(root), "--out", str(out), "--scores", str(scores), "--particles", "60", "--seed", "2"]
+    assert main([*args, "--quiet"]) == 0
+    lines = scores.read_text().splitlines()
+    assert lines[0] == SCORES_HEADER == "frame,x,y,w,h,confidence,lost"
+    assert [line.split(",")[0] for line in lines[1:]] == ["1", "2", "3", "4", "5", "6"]
+    assert [line.split(",")[1:5] for line in lines[1:]] == [line.split(",") for line in out.read_text().splitlines()]
+    boxes, confidence, lost = read_scores(scores)
+    np.testing.assert_array_equal(boxes, read_boxes(out))
+
+    frames = [cv2.imread(str(p))[:, :, ::-1] for p in sorted((root / "img").glob("*.png"))]
+    tracker = Tracker(TrackerConfig(seed=2, n_particles=60))
+    tracker.init(frames[0], gt[0])
+    results = [tracker.update(f) for f in frames[1:]]
+    assert confidence.tolist() == [1.0] + [r.confidence for r in results]
+    assert lost.tolist() == [False] + [r.lost for r in results]
+
+
+def test_track_without_scores_writes_no_scores_file(otb_folder, tmp_path):
+    root, _ = otb_folder
+    assert main(["track", str(root), "--out", str(tmp_path / "res.txt"), "--particles", "40", "--quiet"]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["res.txt"]
+
+
+@pytest.mark.parametrize("same", ["--out", "ground truth"])
+def test_track_scores_refuses_the_result_file_and_the_groundtruth(otb_folder, tmp_path, capsys, same):
+    root, _ = otb_folder
+    out = tmp_path / "res.txt"
+    scores = out if same == "--out" else root / "groundtruth_rect.txt"
+    before = (root / "groundtruth_rect.txt").read_bytes()
+    rc = main(["track", str(root), "--out", str(out), "--scores", str(scores), "--particles", "40", "--quiet"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "--scores" in err and str(scores) in err
+    assert not out.exists() and (root / "groundtruth_rect.txt").read_bytes() == before
+
+
+def test_track_failing_midway_writes_no_scores(otb_folder, tmp_path, capsys):
+    root, _ = otb_folder
+    broken = tmp_path / "Broken"
+    (broken / "img").mkdir(parents=True)
+    for f in sorted((root / "img").iterdir()):
+        (broken / "img" / f.name).write_bytes(f.read_bytes())
+    (broken / "groundtruth_rect.txt").write_bytes((root / "groundtruth_rect.txt").read_bytes())
+    (broken / "img" / "0003.png").write_bytes(b"not a png")
+    scores = tmp_path / "scores.csv"
+    rc = main(["track", str(broken), "--out", str(tmp_path / "r.txt"), "--scores", str(scores), "--particles", "40"])
+    assert rc == 2 and not scores.exists() and not (tmp_path / "r.txt").exists()
+    assert [p.name for p in tmp_path.iterdir()] == ["Broken"]  # no temporary file left either
+
+
+def test_scores_files_refuse_what_is_not_their_format(tmp_path):
+    from smtmvt.data.scores import read_scores, write_scores
+
+    box = [[1.0, 2.0, 3.0, 4.0]] * 2
+    with pytest.raises(ValueError, match=r"confidence of frame 2 is 1\.5, not in \[0, 1\]"):
+        write_scores(tmp_path / "s.csv", box, [0.5, 1.5], [False, False])
+    with pytest.raises(ValueError, match=r"2 boxes but confidence of shape \(3,\)"):
+        write_scores(tmp_path / "s.csv", box, [0.5, 0.5, 0.5], [False, False])
+    (tmp_path / "h.csv").write_text("2,3,4,5,6,0.5,0\n")
+    with pytest.raises(ValueError, match="line 1 must be the header"):
+        read_scores(tmp_path / "h.csv")
+    (tmp_path / "l.csv").write_text("frame,x,y,w,h,confidence,lost\n1,2,3,4,5,0.5,2\n")
+    with pytest.raises(ValueError, match="line 2 is not"):
+        read_scores(tmp_path / "l.csv")
+    write_scores(tmp_path / "ok.csv", box, [0.25, 1.0], [True, False])
+    boxes, confidence, lost = read_scores(tmp_path / "ok.csv")
+    np.testing.assert_array_equal(boxes, box)
+    assert confidence.tolist() == [0.25, 1.0] and lost.tolist() == [True, False]

@@ -25,7 +25,9 @@ Usage (like OpenCV's trackers)::
 
 from __future__ import annotations
 
+import dataclasses
 import functools
+import math
 import time
 from collections import defaultdict
 from contextlib import contextmanager
@@ -38,6 +40,7 @@ from threadpoolctl import ThreadpoolController
 
 from .anchor import anchor_offsets
 from .background import background_offsets, ring_states
+from .confidence import LOST_BELOW, Evidence, confidence
 from .config import TrackerConfig
 from .correlation import CELL, CorrelationFilter, apce, clears, peak_point, relative_scores
 from .features import Patches, extract_views, intensity_template_size
@@ -100,6 +103,15 @@ class TrackResult:
     occluded : the outlier term flagged this frame as occluded.
     template_replaced : index of the template replaced this frame, or None.
     frame_index : 0-based index of the frame since :meth:`Tracker.init`.
+    confidence : float in [0, 1], how sure the tracker is that ``box`` is on
+        the target (:func:`smtmvt.confidence.confidence` of ``evidence``;
+        monotone in it, to be calibrated: see :mod:`smtmvt.confidence`).
+    lost : ``confidence`` below :data:`smtmvt.confidence.LOST_BELOW` (0.5):
+        the tracker believes the target is lost (occluded, out of view, or
+        the box slid off it).
+    evidence : the frame's :class:`smtmvt.confidence.Evidence` (the
+        correlation response's peak and APCE ratios, the chosen cost's
+        ratio, the lost streak) that ``confidence`` was computed from.
     """
 
     box: tuple
@@ -108,6 +120,18 @@ class TrackResult:
     occluded: bool
     template_replaced: int | None
     frame_index: int
+    confidence: float = 1.0
+    lost: bool = False
+    evidence: Evidence = Evidence()
+
+
+def _ratio(value: float, typical: float) -> float:
+    """``value / typical`` for a positive ``typical``; else 1 where ``value`` is
+    not above it and ``inf`` where it is (nothing to compare with)."""
+    value, typical = float(value), float(typical)
+    if typical > 0:
+        return value / typical
+    return 1.0 if value <= typical else math.inf
 
 
 def _reshaped_box(box, reshape: tuple) -> np.ndarray:
@@ -437,6 +461,23 @@ class Tracker:
         with self._blas_limit():
             self._init(frame, box)
 
+    def reinit(self, frame: np.ndarray, box) -> None:
+        """Restart tracking from ``box`` of ``frame`` (say, after ``TrackResult.lost``,
+        from a detector's box), without building a new tracker.
+
+        ``frame`` and ``box`` are as for :meth:`init` (the frame may have another
+        size). Everything learned is dropped: the target state, the particles
+        and the velocity, the templates, the correlation and scale filters and
+        their response history, the foreground model, the lost streak, the
+        costs ``confidence`` compares with, the frame count and ``timings``;
+        the random generator is seeded again from ``config.seed``. Kept: the
+        config, the BLAS thread-pool controller and the numba kernels (compiled
+        once per process). So the boxes that follow are those of a new
+        ``Tracker(config)`` started with ``init(frame, box)``. A refused
+        ``box`` raises ValueError as :meth:`init`'s does.
+        """
+        self.init(frame, box)
+
     def update(self, frame: np.ndarray) -> TrackResult:
         """Track the target into ``frame``; returns a :class:`TrackResult`.
 
@@ -534,6 +575,7 @@ class Tracker:
         # config.redetect_after: frames in a row the target seemed lost, the last state the
         # filter learned from, and whether this frame's response came from the wider search
         self._lost = 0
+        self._costs: list[float] = []  # the chosen candidates' costs (TrackResult.confidence)
         self._last_learned = self._state.copy()
         self._redetected = False
         self._initialized = True
@@ -645,7 +687,25 @@ class Tracker:
             self._last_learned = self._state.copy()
             with self._timed("likelihood"):
                 self._filter.update(frame, self._from_work(self._work_box), self.config.correlation_rate)
-        return result, detail
+        evidence = self._evidence(result.score, judged)
+        c = confidence(evidence)
+        return dataclasses.replace(result, confidence=c, lost=c < LOST_BELOW, evidence=evidence), detail
+
+    def _evidence(self, score: float, judged) -> Evidence:
+        """This frame's :class:`Evidence`: the ``judged`` response's peak and
+        APCE over their means before (:meth:`_judge`; 1 and 1 when None), the
+        chosen candidate's cost ``-log(score) / alpha`` over the median cost
+        chosen before (recorded here; ``inf`` for ``score`` 0), and the lost
+        streak (``_lost``, updated this frame)."""
+        peak = apce_ratio = 1.0
+        if judged is not None:
+            now, past = judged
+            peak, apce_ratio = _ratio(now[0], past[0]), _ratio(now[1], past[1])
+        cost = -math.log(score) / self.config.alpha if score > 0 else math.inf
+        cost_ratio = _ratio(cost, float(np.median(self._costs))) if self._costs else 1.0
+        if math.isfinite(cost):
+            self._costs.append(cost)
+        return Evidence(peak, apce_ratio, cost_ratio, self._lost)
 
     def _check_frame(self, frame) -> None:
         """Raise ValueError for a frame that cannot be read (shape, dtype, NaN) or whose

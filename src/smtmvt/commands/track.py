@@ -50,6 +50,12 @@ def add_parser(sub) -> None:
     p.add_argument("--max-frames", type=positive_int, default=None, help="stop after this many frames")
     p.add_argument("--particles", type=positive_int, default=None, help="number of particles (default 400)")
     p.add_argument("--video", default=None, help="write an annotated video (.mp4, .avi or .gif)")
+    p.add_argument(
+        "--scores",
+        default=None,
+        help="also write a CSV file with a header and one 'frame,x,y,w,h,confidence,lost' line per frame "
+        "(1-based frame and box; confidence in [0, 1], lost 0 or 1; the first frame's: 1, 0)",
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=run_track)
 
@@ -62,7 +68,7 @@ def check_outputs(args, seq) -> None:
     """
     from ..visualize import VIDEO_OUTPUTS
 
-    outputs = [("--out", args.out)] + ([("--video", args.video)] if args.video else [])
+    outputs = [("--out", args.out)] + [(option, path) for option, path in _extra_outputs(args) if path]
     inputs = [("ground truth", f) for f in (seq.groundtruth_file, args.groundtruth) if f is not None]
     inputs += [("frame file", f) for f in getattr(seq, "files", [seq.source])]
     for option, path in outputs:
@@ -70,16 +76,23 @@ def check_outputs(args, seq) -> None:
         for kind, source in inputs:
             if same_file(path, source):
                 raise ValueError(f"{option} {path} is the sequence's {kind}: refusing to write over it")
-    if args.video:
-        if Path(args.video).suffix.lower() not in VIDEO_OUTPUTS:
-            raise ValueError(f"--video {args.video}: unsupported type (use {', '.join(VIDEO_OUTPUTS)})")
-        if same_file(args.video, args.out):
-            raise ValueError(f"--video and --out are the same file: {args.out}")
+    if args.video and Path(args.video).suffix.lower() not in VIDEO_OUTPUTS:
+        raise ValueError(f"--video {args.video}: unsupported type (use {', '.join(VIDEO_OUTPUTS)})")
+    for i, (option, path) in enumerate(outputs):
+        for other, other_path in outputs[:i]:
+            if same_file(path, other_path):
+                raise ValueError(f"{option} and {other} are the same file: {path}")
+
+
+def _extra_outputs(args) -> list[tuple[str, str | None]]:
+    """``[(option, path or None)]`` of the outputs besides ``--out``."""
+    return [("--video", args.video), ("--scores", getattr(args, "scores", None))]
 
 
 def run_track(args) -> int:
     from ..config import TrackerConfig
     from ..data import open_sequence, write_boxes
+    from ..data.scores import write_scores
     from ..tracker import Tracker
 
     seq = open_sequence(args.source, groundtruth=args.groundtruth)
@@ -94,10 +107,15 @@ def run_track(args) -> int:
     overrides = {"seed": args.seed}
     if args.particles:
         overrides["n_particles"] = args.particles
-    tracker = Tracker(TrackerConfig(**overrides))
+    tracker = _Recorder(Tracker(TrackerConfig(**overrides)))
     sink = _sink(args.video)
     boxes, track_time = _track_all(tracker, seq, n, box0, sink, args)
     write_boxes(args.out, boxes)  # complete: every frame has its box
+    if args.scores:
+        try:
+            write_scores(args.scores, boxes, tracker.confidence, tracker.lost)
+        except OSError as exc:
+            raise OSError(f"{args.out} written; the scores file {args.scores} failed: {exc}") from exc
     if sink is not None:
         try:
             sink.close()
@@ -105,6 +123,26 @@ def run_track(args) -> int:
             raise OSError(f"{args.out} written; the video {args.video} failed: {exc}") from exc
     print(_summary(seq, n, boxes, track_time, args.out))
     return 0
+
+
+class _Recorder:
+    """A tracker that records, frame by frame, what its ``update`` said besides the
+    box: ``confidence`` and ``lost`` lists (the ``init`` frame's: 1.0, False)."""
+
+    def __init__(self, tracker) -> None:
+        self.tracker = tracker
+        self.confidence: list[float] = []
+        self.lost: list[bool] = []
+
+    def init(self, frame, box) -> None:
+        self.tracker.init(frame, box)
+        self.confidence, self.lost = [1.0], [False]
+
+    def update(self, frame):
+        result = self.tracker.update(frame)
+        self.confidence.append(result.confidence)
+        self.lost.append(result.lost)
+        return result
 
 
 def _sink(path):

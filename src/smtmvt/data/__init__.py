@@ -26,6 +26,7 @@ from .errors import SequenceError, SequenceWarning
 from .frames import IMAGE_EXTENSIONS, read_frame
 from .names import canonical_name, lookup, name_clashes, natural_key
 from .otb import OTB_FIRST_FRAME, open_otb_sequence
+from .scores import read_scores, write_scores
 from .sequence import ArraySequence, ImageSequence, Sequence
 from .sources import open_sequence
 from .video import VIDEO_EXTENSIONS, VideoSequence
@@ -56,7 +57,9 @@ __all__ = [
     "parse_boxes",
     "read_boxes",
     "read_frame",
+    "read_scores",
     "write_boxes",
+    "write_scores",
     "write_bytes_atomic",
     "write_text_atomic",
 ]
