@@ -178,3 +178,27 @@ def test_shape_errors_are_named(inst):
     X, D, *_ = inst
     with pytest.raises(ValueError, match=r"X\[1\].*D\[1\]"):
         solve_mtt(X, [D[0], D[1][:-1], D[2]])
+
+
+def _lad_reference(X, D, lam_p, lam_q):
+    """cvxpy's optimum of the MTMVT-LAD problem, written independently of the package."""
+    K, N, n = len(X), D[0].shape[1], X[0].shape[1]
+    P = [cp.Variable((N, n)) for _ in range(K)]
+    Q = [cp.Variable((N, n)) for _ in range(K)]
+    fit = sum(cp.sum(cp.abs(X[k] - D[k] @ (P[k] + Q[k]))) for k in range(K))
+    rows = sum(cp.norm(cp.hstack([P[k][j, :] for k in range(K)]), 2) for j in range(N))
+    cols = sum(cp.norm(cp.hstack([Q[k][:, i] for k in range(K)]), 2) for i in range(n))
+    return _solve(cp.Problem(cp.Minimize(fit + lam_p * rows + lam_q * cols)))
+
+
+def test_mtmvt_lad_at_the_trackers_budget_is_near_the_optimum():
+    """The tracker's setting (TrackerConfig.paper: tol 1e-3, 200 iterations) on an
+    instance of the tracker's shape (4 views, 10 templates, unit columns): the
+    objective within 1% of cvxpy's (measured 0.13%, 0.40% with residual balancing); balancing, on for the
+    other models, is off for LAD (on the tracker's own instances it stalled 47% above)."""
+    X, D = make_instance(7, K=4, N=10, n=60, d_range=(40, 120))
+    X = [x / np.linalg.norm(x, axis=0) for x in X]
+    ref = _lad_reference(X, D, 0.1, 0.5)
+    _, _, info = solve_mtmvt_lad(X, D, tol=1e-3, max_iter=200, return_info=True)
+    assert ref <= info.objective * (1 + 1e-9)
+    assert info.objective <= ref * 1.01

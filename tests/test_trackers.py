@@ -380,3 +380,11 @@ def test_determinism_and_fresh_process_are_declared():
         assert tracker_spec("test-declared").deterministic  # the factory's own attribute
     finally:
         unregister_tracker("test-declared")
+
+
+def test_comparison_models_are_registered_in_the_papers_setting():
+    from smtmvt import TrackerConfig
+
+    lad = make_tracker("smtmvt-mtmvt-lad", seed=2)
+    assert lad.config == TrackerConfig.paper(seed=2, model="mtmvt-lad")
+    assert make_tracker("smtmvt-mtmvt-ls", seed=2).config.model == "mtmvt-ls"

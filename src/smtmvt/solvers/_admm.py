@@ -33,7 +33,7 @@ from ._admm_rules import penalty_factor, tolerances
 __all__ = ["admm_blocks"]
 
 
-def admm_blocks(X, D, loss_prox, block_proxes, tol, max_iter, rho=2.0, beta=0.5):
+def admm_blocks(X, D, loss_prox, block_proxes, tol, max_iter, rho=2.0, beta=0.5, adapt=True):
     """Run the ADMM above.
 
     Parameters
@@ -45,6 +45,12 @@ def admm_blocks(X, D, loss_prox, block_proxes, tol, max_iter, rho=2.0, beta=0.5)
         ``argmin_Z g_b(Z) + 1/(2t) ||Z - V||^2`` on (K, N, n) arrays.
     tol : float > 0
     max_iter : int >= 1
+    adapt : bool
+        Residual balancing of rho during the first iterations (the default).
+        Off for the LAD loss: there it drives rho away from where the
+        iterates make progress (tracker-size instance, 100 candidates: the
+        objective stalls 47% above the optimum with it, 0.3% above after 200
+        iterations without it).
 
     Returns
     -------
@@ -103,7 +109,7 @@ def admm_blocks(X, D, loss_prox, block_proxes, tol, max_iter, rho=2.0, beta=0.5)
         if r_pri <= eps_pri and r_dual <= eps_dual:
             converged = True
             break
-        factor = penalty_factor(it, n_adapt, r_pri, eps_pri, r_dual, eps_dual)
+        factor = penalty_factor(it, n_adapt, r_pri, eps_pri, r_dual, eps_dual) if adapt else 1.0
         if factor != 1.0:
             rho *= factor
             U = [u / factor for u in U]
