@@ -388,3 +388,6 @@ def test_comparison_models_are_registered_in_the_papers_setting():
     lad = make_tracker("smtmvt-mtmvt-lad", seed=2)
     assert lad.config == TrackerConfig.paper(seed=2, model="mtmvt-lad")
     assert make_tracker("smtmvt-mtmvt-ls", seed=2).config.model == "mtmvt-ls"
+    ivt = make_tracker("smtmvt-ivt", seed=4, forgetting=0.95)
+    assert ivt.config.seed == 4 and ivt.config.forgetting == 0.95 and ivt.config.n_particles == 600
+    assert ivt.config.affine_std == (4.0, 4.0, 0.01, 0.0, 0.005, 0.0)

@@ -21,6 +21,9 @@ Built-in names
     The paper's comparison models as observation models of our particle filter,
     in the paper's setting (``TrackerConfig.paper(model=...)``: the views as the
     paper samples them, frames at 320x240, as its table ran every tracker).
+``smtmvt-ivt``
+    IVT (Ross et al. 2008, :mod:`smtmvt.ivt`) with OTB's particle-filter setting, frames
+    at 320x240. Options: the fields of :class:`smtmvt.ivt.IVTConfig`.
 ``opencv-csrt``, ``opencv-kcf``, ``opencv-mil``
     OpenCV's current API (``cv2.TrackerXXX_create``). Options: the fields of
     ``cv2.TrackerXXX_Params`` (e.g. ``detect_thresh=0.2`` for KCF).
@@ -436,6 +439,13 @@ def _smtmvt_paper_factory(seed: int | None = None, **fields) -> SmtmvtAdapter:
     return SmtmvtAdapter(seed=seed, config=TrackerConfig.paper(), **fields)
 
 
+def _ivt_factory(seed: int | None = None, **fields):
+    """IVT (:class:`smtmvt.ivt.IVTTracker`) with OTB's settings, fields of :class:`~smtmvt.ivt.IVTConfig` overridable."""
+    from ..ivt import IVTConfig, IVTTracker
+
+    return IVTTracker(IVTConfig(seed=None if seed is None else int(seed), **fields))
+
+
 register_tracker("smtmvt", _smtmvt_factory)
 register_tracker("smtmvt-paper", _smtmvt_paper_factory)
 # The paper's comparison models in our particle filter (TrackerConfig.model):
@@ -445,6 +455,8 @@ register_tracker("smtmvt-l1t", functools.partial(_smtmvt_paper_factory, model="l
 register_tracker("smtmvt-mtt", functools.partial(_smtmvt_paper_factory, model="mtt", views=("intensity",)))
 register_tracker("smtmvt-mtmvt-ls", functools.partial(_smtmvt_paper_factory, model="mtmvt-ls"))
 register_tracker("smtmvt-mtmvt-lad", functools.partial(_smtmvt_paper_factory, model="mtmvt-lad"))
+# IVT: its own appearance model (an incremental PCA subspace) and particle filter (smtmvt.ivt)
+register_tracker("smtmvt-ivt", _ivt_factory)
 # OpenCV: MIL and TLD run in a fresh process per pair; TLD's boxes there do not depend on the
 # seed (measured: the same for seeds 1, 2, 5, 77, 123 on Girl and Crossing), MIL's do.
 _DETERMINISTIC = {"opencv-csrt", "opencv-kcf", "opencv-mosse", "opencv-medianflow", "opencv-boosting", "opencv-tld"}
