@@ -130,6 +130,12 @@ def _add_report(subparsers) -> None:
     add("--benchmark", default="tb100", choices=["tb100", "cvpr13", "tb50"], help="published score set (default tb100)")
     add("--top", type=positive_int, default=10, metavar="N", help="curves per plot (default 10)")
     add(
+        "--paper-table",
+        action="store_true",
+        help="write report/paper_table.md and .csv: the paper's table beside ours and OTB's published runs "
+        "(written anyway when the run holds a sequence of the paper's table)",
+    )
+    add(
         "--repeat",
         type=bounded_int(1, MAX_REPEAT),
         metavar="N",
@@ -276,6 +282,7 @@ def cmd_report(args) -> int:
         top=args.top,
         invalid=args.invalid,
         repeat=args.repeat,
+        paper_table=args.paper_table,
     )
     _print_report(summary, run.root)
     errors = summary.get("errors", [])

@@ -38,6 +38,7 @@ from ..data import canonical_name
 from .groundtruth import GroundTruth, load_groundtruth_source
 from .metrics import _check_mode
 from .page import index_html
+from .paper_table import paper_table_files
 from .plots import Curve, render_curves, select_curves
 from .published import ATTRIBUTE_NAMES, benchmark_label, load_attribute_table, load_published_scores
 from .rundir import RunDir, RunInfo
@@ -62,6 +63,7 @@ def build_report(
     sequences: Sequence[str] | None = None,
     formats: Sequence[str] = ("png", "svg"),
     repeat: int | None = None,
+    paper_table: bool = False,
 ) -> dict:
     """Score the stored results of ``run_dir`` and write ``run_dir/report/``. Returns the summary.
 
@@ -91,6 +93,9 @@ def build_report(
     formats : plot formats.
     repeat : int, optional
         Repeats to score (default: all the run holds; fewer reports the first ones).
+    paper_table : bool
+        Write ``paper_table.md``/``.csv`` (:mod:`.paper_table`); they are written anyway
+        when the run holds a sequence of the paper's table.
 
     Returns
     -------
@@ -137,7 +142,10 @@ def build_report(
             "top": top, "attributes": source, "max_frames": info.max_frames, "repeat": repeat, "protocol": PROTOCOL,
         }  # fmt: skip
         curves = _published(summary, published, benchmark)
-        _write(run, summary, curves, top, formats)
+        extra = paper_table_files(summary.trackers, summary.sequences, published, info.max_frames)
+        if paper_table and not extra:
+            summary.errors.append({"error": "--paper-table: the run holds none of the paper's sequences"})
+        _write(run, summary, curves, top, formats, extra)
     return _finite(asdict(summary))
 
 
@@ -221,10 +229,11 @@ def _published(summary: Summary, published, benchmark: str) -> dict[str, dict]:
 # --------------------------------------------------------------------------- writing
 
 
-def _write(run: RunDir, summary: Summary, published: dict, top: int, formats) -> None:
+def _write(run: RunDir, summary: Summary, published: dict, top: int, formats, extra: dict) -> None:
     out = run.report_dir
     written = _write_plots(run, summary, published, top, formats)
-    for name, text in (("table.md", markdown_table(summary)), ("table.csv", csv_table(summary))):
+    tables = {"table.md": markdown_table(summary), "table.csv": csv_table(summary), **extra}
+    for name, text in tables.items():
         written.append(run.write_text(out / name, text))
     summary.files = sorted(p.name for p in written) + ["index.html", "summary.json"]
     run.write_text(out / "index.html", index_html(summary))
