@@ -24,6 +24,7 @@ from .boxes import parse_boxes, read_boxes, write_boxes
 from .dataset import list_dataset, open_dataset
 from .errors import SequenceError, SequenceWarning
 from .frames import IMAGE_EXTENSIONS, read_frame
+from .layouts import ABSENT_RULES, detect_layout
 from .names import canonical_name, lookup, name_clashes, natural_key
 from .otb import OTB_FIRST_FRAME, open_otb_sequence
 from .scores import read_scores, write_scores
@@ -32,6 +33,7 @@ from .sources import open_sequence
 from .video import VIDEO_EXTENSIONS, VideoSequence
 
 __all__ = [
+    "ABSENT_RULES",
     "ATTRIBUTES",
     "ATTRIBUTE_NAMES",
     "ArraySequence",
@@ -46,6 +48,7 @@ __all__ = [
     "VideoSequence",
     "attributes_of",
     "canonical_name",
+    "detect_layout",
     "list_dataset",
     "load_attributes",
     "lookup",

@@ -1,4 +1,5 @@
-"""A benchmark folder: one OTB sequence per sub-folder (``<root>/<Seq>/img`` + ground truth)."""
+"""A benchmark folder: one OTB sequence per sub-folder (``<root>/<Seq>/img`` + ground truth),
+or a GOT-10k, LaSOT, UAV123 or VOT folder, detected by :func:`.layouts.detect_layout`."""
 
 from __future__ import annotations
 
@@ -6,6 +7,7 @@ import re
 from pathlib import Path
 
 from .errors import SequenceError
+from .layouts import detect_layout, layout_module
 from .names import name_clashes, natural_key
 from .otb import groundtruth_targets, is_otb_folder, open_otb_sequence
 
@@ -22,10 +24,17 @@ def list_dataset(root) -> list:
     ``<folder>-<k>`` (Human4 -> ``Human4-2``, as OTB names it). ``target`` is
     None for a plain ``groundtruth_rect.txt`` or none at all. Sorted by name,
     naturally and case-insensitively.
+
+    A folder in another layout (:mod:`.layouts`) gives that layout's sequences, each
+    ``(name, folder, None)``: GOT-10k and VOT ``<seq>``, LaSOT ``<class>-<n>``, UAV123 the
+    annotation file's stem (``bird1_2``, whose folder is ``data_seq/UAV123/bird1``).
     """
     root = Path(root)
     if not root.is_dir():
         raise SequenceError(f"dataset folder not found: {root}", path=root)
+    layout = layout_module(detect_layout(root))
+    if layout is not None:
+        return sorted(layout.entries(root), key=lambda e: natural_key(e[0]))
     entries = []
     for folder in root.iterdir():
         if folder.name.startswith(".") or not folder.is_dir():
@@ -77,7 +86,11 @@ def _clash_messages(names, root) -> dict[str, str]:
 
 
 def open_dataset(root, sequences=None, *, on_error="raise") -> list:
-    """Open every OTB sequence in ``root`` (see :func:`list_dataset`), sorted by name.
+    """Open every sequence in ``root`` (see :func:`list_dataset`), sorted by name.
+
+    The folder's layout is detected (:func:`.layouts.detect_layout`): OTB by default, else
+    GOT-10k, LaSOT, UAV123 or VOT; frames where a layout's labels say the target is absent
+    have NaN ground-truth rows (see each layout module for the rule scoring applies).
 
     Parameters
     ----------
@@ -126,10 +139,14 @@ def open_dataset(root, sequences=None, *, on_error="raise") -> list:
             sequences = re.split(r"[,\s]+", sequences.strip())
         entries = _select(entries, sequences, root)
     items: list = []
+    layout = layout_module(detect_layout(root))
     for name, folder, target in entries:
         try:
             if name in clashes:
                 raise SequenceError(clashes[name], path=folder)
+            if layout is not None:
+                items.append(layout.open_entry(root, name, folder))
+                continue
             if not groundtruth_targets(folder):
                 raise SequenceError(f"{folder}: no ground-truth file (groundtruth_rect.txt)", path=folder)
             items.append(open_otb_sequence(folder, name=name, target=target))

@@ -143,9 +143,10 @@ def _add_report(subparsers) -> None:
     )
     add(
         "--invalid",
-        default="otb",
+        default=None,
         choices=["otb", "pytracking", "fail"],
-        help="invalid ground-truth frames: otb (MATLAB toolkit, default), pytracking, fail",
+        help="invalid ground-truth frames: otb (MATLAB toolkit), pytracking, fail "
+        "(default: the dataset layout's own rule, otb for OTB folders)",
     )
     r.set_defaults(func=cmd_report)
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..data import SequenceError, canonical_name, name_clashes, open_dataset
+from ..data import ABSENT_RULES, SequenceError, canonical_name, detect_layout, name_clashes, open_dataset
 from .published import read_box_file
 
 __all__ = ["GroundTruth", "load_groundtruth_source"]
@@ -21,6 +21,10 @@ class GroundTruth:
     anything else (an ``anno/`` folder of ``<Seq>.txt``, folders without images) is read
     directly (other people's files: the lenient reader). Names that differ only in case or
     separators (``Seq_1``, ``seq-1``) are refused, never mixed up.
+
+    A GOT-10k, LaSOT, UAV123 or VOT folder (:func:`smtmvt.data.detect_layout`) is read by
+    its layout's reader only; ``layout`` names it and ``absent_rule`` is how its toolkit
+    scores frames without a box (``invalid=`` of :mod:`.metrics`; ``"otb"`` for OTB).
     """
 
     def __init__(self, root) -> None:
@@ -31,8 +35,11 @@ class GroundTruth:
         self._names: dict[str, str] = {}
         self._errors: dict[str, str] = {}
         self._files: dict[str, Path] = {}
+        self.layout = detect_layout(self.root)
+        self.absent_rule = ABSENT_RULES[self.layout]
         self._scan_sequences()
-        self._scan_files()
+        if self.layout == "otb":
+            self._scan_files()
 
     def _scan_sequences(self) -> None:
         try:

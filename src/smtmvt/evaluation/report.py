@@ -57,7 +57,7 @@ def build_report(
     benchmark: str = "tb100",
     attributes=None,
     top: int = 10,
-    invalid: str = "otb",
+    invalid: str | None = None,
     *,
     trackers: Sequence[str] | None = None,
     sequences: Sequence[str] | None = None,
@@ -86,8 +86,10 @@ def build_report(
         dataset.
     top : int
         Number of curves in each plot (our trackers first, published ones fill the rest).
-    invalid : {"otb", "pytracking", "fail"}
-        Handling of invalid ground-truth frames (see :mod:`.metrics`).
+    invalid : {"otb", "pytracking", "fail"}, optional
+        Handling of invalid ground-truth frames (see :mod:`.metrics`). Default: the rule
+        of the dataset's layout (``"otb"`` for an OTB folder; GOT-10k and VOT
+        ``"pytracking"``, LaSOT ``"fail"``, UAV123 ``"otb"``: :mod:`smtmvt.data.layouts`).
     trackers, sequences : optional
         Restrict the report (default: ``run.json``'s lists plus any tracker folder found).
     formats : plot formats.
@@ -108,7 +110,8 @@ def build_report(
     ValueError
         Not a run folder, no dataset, or no tracker to report (nothing is written then).
     """
-    _check_mode(invalid)
+    if invalid is not None:
+        _check_mode(invalid)
     run = run_dir if isinstance(run_dir, RunDir) else RunDir(run_dir)
     with run.locked("smtmvt report"):
         info = run.info()
@@ -124,6 +127,7 @@ def build_report(
                 "run smtmvt evaluate on it, or import results with smtmvt report --import"
             )
         gt = GroundTruth(dataset)
+        invalid = invalid or gt.absent_rule
         errors: list[dict] = []
         table, source = _attribute_table(attributes, info, published, gt, errors)
         summary = score_run(

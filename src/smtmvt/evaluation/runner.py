@@ -223,7 +223,10 @@ def run_evaluation(
     with run.locked("smtmvt evaluate", create=True):
         seqs, seq_errors, unknown_seqs = _open_sequences(dataset_dir, sequences)
         if not seqs and not seq_errors and not unknown_seqs:
-            raise ValueError(f"no OTB sequence (sub-folder with img/ and groundtruth_rect.txt) in {dataset_dir}")
+            raise ValueError(
+                f"no sequence in {dataset_dir} (OTB: sub-folders with img/ and groundtruth_rect.txt; "
+                "or a GOT-10k, LaSOT, UAV123 or VOT folder)"
+            )
         names = [s.name for s in seqs] + [n for n, _ in seq_errors if n]
         probes = {spec.name: _tracker_problem(run, spec, tracker_options.get(spec.name, {})) for spec in known}
         info, notes = run.settle(
