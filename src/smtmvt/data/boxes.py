@@ -25,7 +25,7 @@ from .atomic import write_text_atomic
 from .errors import SequenceError
 from .files import read_regular_bytes
 
-__all__ = ["parse_boxes", "read_boxes", "write_boxes", "ONE_BASED_OFFSET"]
+__all__ = ["parse_boxes", "read_boxes", "write_boxes", "box_line", "ONE_BASED_OFFSET"]
 
 #: ``file_box = api_box + ONE_BASED_OFFSET``; ``api_box = file_box - ONE_BASED_OFFSET``.
 ONE_BASED_OFFSET = np.array([1.0, 1.0, 0.0, 0.0])
@@ -156,9 +156,15 @@ def write_boxes(path, boxes) -> Path:
     arr = np.asarray(boxes, dtype=np.float64)
     if arr.ndim != 2 or arr.shape[1] != 4:
         raise ValueError(f"boxes for {path} must have shape (m, 4), got {arr.shape}")
-    file_boxes = arr + ONE_BASED_OFFSET
-    text = "".join(",".join(_format_number(v) for v in row) + "\n" for row in file_boxes)
+    text = "".join(box_line(row) + "\n" for row in arr)
     return write_text_atomic(path, text, encoding="ascii")
+
+
+def box_line(box) -> str:
+    """One result-file line (no newline) for a 0-based ``(x, y, w, h)`` box: ``x+1,y+1,w,h``
+    as :func:`write_boxes` writes it (for files written a line at a time, ``smtmvt track``
+    on a live source)."""
+    return ",".join(_format_number(v) for v in np.asarray(box, dtype=np.float64) + ONE_BASED_OFFSET)
 
 
 def _format_number(value: float) -> str:

@@ -20,7 +20,7 @@ import numpy as np
 from .atomic import write_text_atomic
 from .boxes import ONE_BASED_OFFSET, _format_number
 
-__all__ = ["SCORES_HEADER", "write_scores", "read_scores"]
+__all__ = ["SCORES_HEADER", "write_scores", "read_scores", "scores_line"]
 
 #: The first line of a scores file.
 SCORES_HEADER = "frame,x,y,w,h,confidence,lost"
@@ -45,10 +45,15 @@ def write_scores(path, boxes, confidence, lost) -> Path:
     outside = np.flatnonzero(~((c >= 0) & (c <= 1)))
     if len(outside):
         raise ValueError(f"scores for {path}: confidence of frame {outside[0] + 1} is {c[outside[0]]}, not in [0, 1]")
-    lines = [SCORES_HEADER]
-    for i, (box, ci, li) in enumerate(zip(b + ONE_BASED_OFFSET, c, lost_flags)):
-        lines.append(",".join([str(i + 1), *(_format_number(v) for v in box), _format_number(ci), str(int(li))]))
+    lines = [SCORES_HEADER] + [scores_line(i + 1, box, ci, li) for i, (box, ci, li) in enumerate(zip(b, c, lost_flags))]
     return write_text_atomic(path, "\n".join(lines) + "\n", encoding="ascii")
+
+
+def scores_line(frame: int, box, confidence: float, lost: bool) -> str:
+    """One line (no newline) of a scores file, as :func:`write_scores` writes it: the 1-based
+    ``frame``, the 0-based ``box`` written 1-based, ``confidence`` and ``lost`` as 0 or 1."""
+    b = np.asarray(box, dtype=np.float64) + ONE_BASED_OFFSET
+    return ",".join([str(frame), *(_format_number(v) for v in b), _format_number(float(confidence)), str(int(lost))])
 
 
 def read_scores(path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
