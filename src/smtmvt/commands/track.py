@@ -10,7 +10,7 @@ import numpy as np
 
 from .args import check_writable, positive_int, same_file
 
-__all__ = ["add_parser", "run_track", "parse_box", "check_outputs"]
+__all__ = ["add_parser", "run_track", "parse_box", "check_outputs", "check_output_paths"]
 
 
 def parse_box(text: str) -> tuple:
@@ -33,12 +33,25 @@ def add_parser(sub) -> None:
         "track",
         help="track an object through a sequence, write an OTB result file",
         description="Track one object. SOURCE is an OTB folder (img/ + groundtruth_rect.txt), a video "
-        "file, a folder of images or a glob pattern. Writes one 1-based 'x,y,w,h' line per frame, "
-        "once every frame is tracked (an interrupted or failed run writes nothing).",
+        "file, a folder of images or a glob pattern: one 1-based 'x,y,w,h' line per frame is written "
+        "once every frame is tracked (an interrupted or failed run writes nothing). SOURCE may also be "
+        "live: a camera index (0), a stream URL (rtsp://, http://) or, with --live, anything "
+        "cv2.VideoCapture opens; a live run appends each frame's line as it is tracked.",
     )
-    p.add_argument("source", help="OTB folder, video file, image folder or glob pattern")
+    p.add_argument("source", help="OTB folder, video file, image folder, glob pattern, camera index or stream URL")
     p.add_argument("--out", required=True, help="result file (OTB format, 1-based x,y,w,h per line)")
     p.add_argument(
+        "--live",
+        action="store_true",
+        help="read SOURCE as a live source (frames as cv2.VideoCapture gives them, lines written as they "
+        "are tracked), even when it is a file",
+    )
+    p.add_argument("--show", action="store_true", help="live source: show each box and its confidence; q or Esc stops")
+    first = p.add_mutually_exclusive_group()
+    first.add_argument(
+        "--select", action="store_true", help="live source: draw the first box on the first frame with the mouse"
+    )
+    first.add_argument(
         "--box",
         type=parse_box,
         default=None,
@@ -66,11 +79,16 @@ def check_outputs(args, seq) -> None:
     ``--out`` and ``--video`` must be creatable, differ from each other and from the
     sequence's ground truth and frame files; ``--video`` must be a type we write.
     """
+    inputs = [("ground truth", f) for f in (seq.groundtruth_file, args.groundtruth) if f is not None]
+    inputs += [("frame file", f) for f in getattr(seq, "files", [seq.source])]
+    check_output_paths(args, inputs)
+
+
+def check_output_paths(args, inputs) -> None:
+    """:func:`check_outputs` against ``inputs``, ``[(what, path)]`` that no output may be."""
     from ..visualize import VIDEO_OUTPUTS
 
     outputs = [("--out", args.out)] + [(option, path) for option, path in _extra_outputs(args) if path]
-    inputs = [("ground truth", f) for f in (seq.groundtruth_file, args.groundtruth) if f is not None]
-    inputs += [("frame file", f) for f in getattr(seq, "files", [seq.source])]
     for option, path in outputs:
         check_writable(path, option)
         for kind, source in inputs:
@@ -89,11 +107,36 @@ def _extra_outputs(args) -> list[tuple[str, str | None]]:
     return [("--video", args.video), ("--scores", getattr(args, "scores", None))]
 
 
-def run_track(args) -> int:
+def _tracker(args) -> _Recorder:
+    """The tracker the options ask for (``--seed``, ``--particles``), recording confidence and lost."""
     from ..config import TrackerConfig
+    from ..tracker import Tracker
+
+    overrides = {"seed": args.seed}
+    if args.particles:
+        overrides["n_particles"] = args.particles
+    return _Recorder(Tracker(TrackerConfig(**overrides)))
+
+
+def run_track(args) -> int:
+    """``smtmvt track``: a live source (:mod:`smtmvt.commands.live`), or a sequence tracked whole."""
+    from ..data.live import is_live_source
+    from .live import run_live
+
+    if args.live or is_live_source(args.source):
+        return run_live(args, _tracker(args), lambda inputs: check_output_paths(args, inputs))
+    for option in ("show", "select"):
+        if getattr(args, option, False):
+            raise ValueError(
+                f"--{option} works on a live source (a camera index, a stream URL); "
+                f"add --live to play {args.source} as one"
+            )
+    return _track_sequence(args)
+
+
+def _track_sequence(args) -> int:
     from ..data import open_sequence, write_boxes
     from ..data.scores import write_scores
-    from ..tracker import Tracker
 
     seq = open_sequence(args.source, groundtruth=args.groundtruth)
     if args.box is not None:
@@ -104,10 +147,7 @@ def run_track(args) -> int:
         raise ValueError(f"{args.source}: no ground truth to start from; give --box x,y,w,h")
     check_outputs(args, seq)
     n = len(seq) if args.max_frames is None else min(len(seq), args.max_frames)
-    overrides = {"seed": args.seed}
-    if args.particles:
-        overrides["n_particles"] = args.particles
-    tracker = _Recorder(Tracker(TrackerConfig(**overrides)))
+    tracker = _tracker(args)
     sink = _sink(args.video)
     boxes, track_time = _track_all(tracker, seq, n, box0, sink, args)
     write_boxes(args.out, boxes)  # complete: every frame has its box
