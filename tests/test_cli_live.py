@@ -138,11 +138,28 @@ def test_live_boxes_are_the_trackers_on_the_same_frames_to_the_end(recorded, tmp
     assert np.abs(np.array([r.box for r in results]) - box).max() > 0.5  # the boxes moved
 
 
-def test_max_frames_bounds_a_live_run(recorded, tmp_path, capsys):
-    out = tmp_path / "res.txt"
-    assert main(live_args(recorded, out, "--box", box_arg(recorded[1]), "--max-frames", "3")) == 0
+def test_max_frames_bounds_a_live_run_and_its_video(recorded, tmp_path, capsys):
+    out, video = tmp_path / "res.txt", tmp_path / "v.avi"
+    assert (
+        main(live_args(recorded, out, "--box", box_arg(recorded[1]), "--max-frames", "3", "--video", str(video))) == 0
+    )
     assert len(read_boxes(out)) == 3
     assert "3 frames (--max-frames)" in capsys.readouterr().out
+    cap = cv2.VideoCapture(str(video))
+    count = 0
+    while cap.grab():
+        count += 1
+    cap.release()
+    assert count == 3
+
+
+def test_a_live_file_is_never_written_over(recorded, tmp_path, capsys):
+    path = tmp_path / "clip.avi"
+    path.write_bytes(recorded[0].read_bytes())
+    before = path.read_bytes()
+    assert main(["track", str(path), "--live", "--box", box_arg(recorded[1]), "--out", str(path)]) == 2
+    assert "live source" in capsys.readouterr().err
+    assert path.read_bytes() == before
 
 
 def test_select_draws_the_first_box(recorded, tmp_path, window):
