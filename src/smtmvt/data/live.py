@@ -26,7 +26,8 @@ _URL = re.compile(r"[A-Za-z][A-Za-z0-9+.-]*://")
 
 def is_live_source(text: str) -> bool:
     """True for a camera index (digits), a URL (``scheme://...``) or an existing path
-    that is neither a regular file nor a folder (a device, a pipe)."""
+    that is neither a regular file nor a folder (a device, a pipe). An existing file or
+    folder is never live here, even one named ``0``: ``smtmvt track --live`` says so."""
     path = Path(text)
     if path.is_file() or path.is_dir():
         return False
