@@ -12,8 +12,10 @@ from smtmvt.correlation import (
     CorrelationFilter,
     apce,
     clears,
+    correlation_cost,
     gaussian_label,
     peak_point,
+    relative_scores,
     respond,
     sample,
     train,
@@ -22,7 +24,7 @@ from smtmvt.correlation import (
     window_shape,
 )
 from smtmvt.demo import make_demo_sequence
-from smtmvt.geometry import affine_to_box
+from smtmvt.geometry import affine_to_box, box_to_affine
 
 
 def _texture(h=240, w=320, seed=0):
@@ -186,6 +188,43 @@ def test_tracker_adds_the_term_in_its_range(demo):
     assert both.sum() >= 5 and np.ptp(term[both]) > 0.05
     ratio = np.log(da.observation.likelihood[both] / db.observation.likelihood[both])
     np.testing.assert_allclose(ratio, -t.config.alpha * term[both], rtol=1e-6, atol=1e-6)
+
+
+def test_the_cost_is_the_peak_less_the_response_over_the_usual_peak():
+    img = _texture()
+    box = np.array([140.0, 100.0, 40.0, 30.0])
+    f = CorrelationFilter(img, box)
+    r, win = f.response(_shifted(img, 3, -2), box)
+    centres = np.array([[160.0, 115.0], [150.0, 110.0], [170.0, 120.0], [120.0, 90.0], [-50.0, -50.0]])
+    # without a reference, the cost is the tracker's former 1 - r_i / r_max
+    np.testing.assert_allclose(correlation_cost(r, win, centres), 1.0 - relative_scores(r, win, centres))
+    # with one, the peak less each response (clipped to [0, peak]) over it, from scipy's bilinear sampling
+    at = ndimage.map_coordinates(r, win.cells(centres)[:, ::-1].T, order=1, mode="constant", cval=0.0)
+    expected = (r.max() - np.clip(at, 0.0, r.max())) / 0.8
+    np.testing.assert_allclose(correlation_cost(r, win, centres, reference=0.8), expected, atol=1e-12)
+    assert correlation_cost(r, win, centres, reference=0.0) == pytest.approx(correlation_cost(r, win, centres))
+    assert not np.any(correlation_cost(np.zeros_like(r), win, centres, reference=0.8))
+
+
+def test_the_tracker_measures_its_term_against_the_mean_peak_before(demo):
+    frames, box = demo.frames, demo.groundtruth[0]
+    t = Tracker(TrackerConfig(n_particles=100, seed=0))
+    t.init(frames[0], box)
+    for i in range(1, 6):
+        t.update(frames[i])
+        peaks = [peak for peak, _ in t._filter.history]
+        assert t._peak_ref == (None if i == 1 else pytest.approx(np.mean(peaks[:-1])))
+    response = t._response(frames[6])
+    term = t._correlation(response, t._particles)
+    scale = response[0].max() / t._peak_ref
+    np.testing.assert_allclose(
+        term, t.config.correlation_weight * scale * (1 - relative_scores(*response, _centres(t)))
+    )
+
+
+def _centres(t):
+    """The frame centres of the tracker's particles."""
+    return box_to_affine(t._from_work(affine_to_box(t._particles)))[:, 4:]
 
 
 def test_points_invert_cells():

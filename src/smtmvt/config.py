@@ -162,7 +162,8 @@ class TrackerConfig:
         Weight of :mod:`smtmvt.foreground`'s term; default 1, 0 the paper (docs/experiments.md#n16,
         #f-foreground_weight).
     correlation_weight : float >= 0
-        Weight of :mod:`smtmvt.correlation`'s term; default 0.5, 0 the paper (docs/experiments.md#n32,
+        Weight of :mod:`smtmvt.correlation`'s term ``weight * (r_max - r_i) / r_ref``, ``r_ref`` the
+        mean peak of the responses before; default 0.5, 0 the paper (docs/experiments.md#n32, #n47,
         #f-correlation_weight).
     correlation_particles : float in [0, 1]
         Share of the particles placed at the filter's peak; default 0.1 (docs/experiments.md#n33, #n34,

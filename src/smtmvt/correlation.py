@@ -78,6 +78,7 @@ __all__ = [
     "respond",
     "sample",
     "relative_scores",
+    "correlation_cost",
     "peak_point",
     "apce",
     "clears",
@@ -311,6 +312,29 @@ def relative_scores(response: np.ndarray, window: Window, centres) -> np.ndarray
     if not peak > 0:
         return np.zeros(len(np.asarray(centres).reshape(-1, 2)))
     return np.clip(sample(response, window.cells(centres)) / peak, 0.0, 1.0)
+
+
+def correlation_cost(response: np.ndarray, window: Window, centres, reference: float | None = None) -> np.ndarray:
+    """The correlation cue's cost of each frame point ``(n, 2)`` ``(x, y)``:
+    ``(r_max - r_i) / reference``, ``r_i`` the ``response`` ``(h, w)`` over
+    ``window`` at the point (:func:`sample`) clipped to ``[0, r_max]``, ``r_max``
+    its peak; ``(n,)`` float64 in ``[0, r_max / reference]`` (all 0 for a
+    response with no positive peak).
+
+    ``reference`` : the peak the filter's responses usually reach (the tracker
+    passes their mean over the frames before); None or not positive: ``r_max``,
+    so that the cost is ``1 - r_i / r_max`` (:func:`relative_scores`). Measured
+    against a usual peak, a response weaker than usual (an occluder, a target
+    that changed) spreads its candidates' costs over a narrower range, and the
+    other cues decide more: the cue weighs in as much as it is sure this frame
+    (docs/experiments.md#n47).
+    """
+    n = len(np.asarray(centres).reshape(-1, 2))
+    peak = float(response.max())
+    if not peak > 0:
+        return np.zeros(n)
+    scale = reference if reference is not None and reference > 0 else peak
+    return (1.0 - relative_scores(response, window, centres)) * (peak / scale)
 
 
 def peak_point(response: np.ndarray, window: Window) -> np.ndarray:

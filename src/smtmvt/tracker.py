@@ -42,7 +42,7 @@ from .anchor import anchor_offsets
 from .background import background_offsets, ring_states
 from .confidence import LOST_BELOW, Evidence, confidence
 from .config import TrackerConfig
-from .correlation import CELL, CorrelationFilter, apce, clears, peak_point, relative_scores
+from .correlation import CELL, CorrelationFilter, apce, clears, correlation_cost, peak_point
 from .features import Patches, extract_views, intensity_template_size
 from .features.coarse import GAMMA_FLOOR
 from .features.tan_triggs import TAN_TRIGGS_GAMMA
@@ -576,6 +576,7 @@ class Tracker:
         # filter learned from, and whether this frame's response came from the wider search
         self._lost = 0
         self._costs: list[float] = []  # the chosen candidates' costs (TrackResult.confidence)
+        self._peak_ref: float | None = None  # the correlation responses' mean peak before this frame
         self._last_learned = self._state.copy()
         self._redetected = False
         self._initialized = True
@@ -675,6 +676,8 @@ class Tracker:
             self._frame_index -= 1
             raise
         judged = self._judge(response)
+        # the correlation cue's scale this frame: the mean peak of the responses before
+        self._peak_ref = None if judged is None else float(judged[1][0])
         obs, views_of = self._observe(prepared, probe_planes, particles, probe_states, plane_scale, response)
         learn = self._templates_learn(judged) and (not self._redetected or self._near_peak(obs, particles, response))
         result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale, learn, frame)
@@ -950,11 +953,12 @@ class Tracker:
 
     def _correlation(self, response, states: np.ndarray) -> np.ndarray:
         """The correlation term of each state ``(n, 6)`` (working frame):
-        ``weight * (1 - r_i / r_max)`` (:mod:`smtmvt.correlation`) from the
-        filter's ``response`` (:meth:`_response`), ``(n,)``."""
+        ``weight * (r_max - r_i) / r_ref`` (:func:`smtmvt.correlation.correlation_cost`)
+        from the filter's ``response`` (:meth:`_response`), ``r_ref`` the mean
+        peak of the responses before (``r_max`` on the first), ``(n,)``."""
         centres = box_to_affine(self._from_work(affine_to_box(states)))[:, 4:]
         r, window = response
-        return self.config.correlation_weight * (1.0 - relative_scores(r, window, centres))
+        return self.config.correlation_weight * correlation_cost(r, window, centres, self._peak_ref)
 
     def _predicted(self) -> np.ndarray:
         """This frame's prediction ``(6,)``: the last state, its translation
