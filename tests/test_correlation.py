@@ -208,7 +208,13 @@ def test_the_cost_is_the_peak_less_the_response_over_the_usual_peak():
 
 def test_the_tracker_measures_its_term_against_the_mean_peak_before(demo):
     frames, box = demo.frames, demo.groundtruth[0]
-    t = Tracker(TrackerConfig(n_particles=100, seed=0))
+    assert not TrackerConfig().correlation_usual_peak  # measured better, not yet the default (n47)
+    off = Tracker(TrackerConfig(n_particles=100, seed=0))
+    off.init(frames[0], box)
+    off.update(frames[1])
+    off.update(frames[2])
+    assert off._peak_ref is None  # each frame's own peak
+    t = Tracker(TrackerConfig(n_particles=100, seed=0, correlation_usual_peak=True))
     t.init(frames[0], box)
     for i in range(1, 6):
         t.update(frames[i])

@@ -162,8 +162,7 @@ class TrackerConfig:
         Weight of :mod:`smtmvt.foreground`'s term; default 1, 0 the paper (docs/experiments.md#n16,
         #f-foreground_weight).
     correlation_weight : float >= 0
-        Weight of :mod:`smtmvt.correlation`'s term ``weight * (r_max - r_i) / r_ref``, ``r_ref`` the
-        mean peak of the responses before; default 0.5, 0 the paper (docs/experiments.md#n32, #n47,
+        Weight of :mod:`smtmvt.correlation`'s term; default 0.5, 0 the paper (docs/experiments.md#n32,
         #f-correlation_weight).
     correlation_particles : float in [0, 1]
         Share of the particles placed at the filter's peak; default 0.1 (docs/experiments.md#n33, #n34,
@@ -185,6 +184,10 @@ class TrackerConfig:
     correlation_first : float in [0, 1]
         Share of the first box's filter in the response; default 0 (docs/experiments.md#n36,
         #f-correlation_first).
+    correlation_usual_peak : bool
+        Measure the correlation term against the responses' mean peak before,
+        ``weight * (r_max - r_i) / r_ref``, instead of this frame's own peak; default False
+        (measured better on both halves of docs/split.md, not yet the default: docs/experiments.md#n47).
     redetect_after : int >= 0
         Weak-peak frames before a wider search; default 10, 0 off (docs/experiments.md#n40, #f-redetect_after).
     motion_weight : float >= 0
@@ -294,6 +297,7 @@ class TrackerConfig:
     template_learn_floor: float = 0.4
     correlation_rate: float = 0.02
     correlation_first: float = 0.0
+    correlation_usual_peak: bool = False
     redetect_after: int = 10
     motion_weight: float = 1.0
     scale_push: float = 0.0
@@ -377,6 +381,7 @@ class TrackerConfig:
             "template_learn_floor": self.template_learn_floor >= 0,
             "correlation_rate": 0 < self.correlation_rate <= 1,
             "correlation_first": 0 <= self.correlation_first <= 1,
+            "correlation_usual_peak": isinstance(self.correlation_usual_peak, bool),
             "redetect_after": int(self.redetect_after) == self.redetect_after and self.redetect_after >= 0,
             "motion_weight": self.motion_weight >= 0,
             "scale_push": self.scale_push >= 0,

@@ -676,8 +676,8 @@ class Tracker:
             self._frame_index -= 1
             raise
         judged = self._judge(response)
-        # the correlation cue's scale this frame: the mean peak of the responses before
-        self._peak_ref = None if judged is None else float(judged[1][0])
+        # config.correlation_usual_peak: the correlation cue's scale, the mean peak of the responses before
+        self._peak_ref = float(judged[1][0]) if judged is not None and self.config.correlation_usual_peak else None
         obs, views_of = self._observe(prepared, probe_planes, particles, probe_states, plane_scale, response)
         learn = self._templates_learn(judged) and (not self._redetected or self._near_peak(obs, particles, response))
         result, detail = self._decide(particles, obs, views_of, probe_boxes, prepared, plane_scale, learn, frame)
@@ -954,8 +954,9 @@ class Tracker:
     def _correlation(self, response, states: np.ndarray) -> np.ndarray:
         """The correlation term of each state ``(n, 6)`` (working frame):
         ``weight * (r_max - r_i) / r_ref`` (:func:`smtmvt.correlation.correlation_cost`)
-        from the filter's ``response`` (:meth:`_response`), ``r_ref`` the mean
-        peak of the responses before (``r_max`` on the first), ``(n,)``."""
+        from the filter's ``response`` (:meth:`_response`), ``r_ref`` this
+        frame's peak ``r_max``, or with ``config.correlation_usual_peak`` the
+        mean peak of the responses before (``r_max`` on the first), ``(n,)``."""
         centres = box_to_affine(self._from_work(affine_to_box(states)))[:, 4:]
         r, window = response
         return self.config.correlation_weight * correlation_cost(r, window, centres, self._peak_ref)
