@@ -13,9 +13,20 @@ from ..files import read_regular_bytes
 from ..frames import list_images
 from ..sequence import ImageSequence, align_groundtruth
 
-__all__ = ["read_flags", "sequence_from_files", "images_of"]
+__all__ = ["read_flags", "sequence_from_files", "images_of", "visible_folders", "groundtruth_entries"]
 
 _FLAG_SEPARATOR = re.compile(r"\s*,\s*|\s+")
+
+
+def visible_folders(root: Path) -> list:
+    """The sub-folders of ``root`` whose names do not start with a dot."""
+    return [p for p in root.iterdir() if p.is_dir() and not p.name.startswith(".")]
+
+
+def groundtruth_entries(root: Path) -> list:
+    """``[(name, folder, None), ...]``: the visible sub-folders holding ``groundtruth.txt``
+    (the ``entries`` of the layouts with one folder per sequence)."""
+    return [(p.name, p, None) for p in visible_folders(root) if (p / "groundtruth.txt").is_file()]
 
 
 def read_flags(path, n_frames: int) -> np.ndarray:

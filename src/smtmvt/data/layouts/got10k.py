@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .common import images_of, read_flags, sequence_from_files
+from .common import groundtruth_entries, images_of, read_flags, sequence_from_files, visible_folders
 
 __all__ = ["NAME", "ABSENT_RULE", "MARKERS", "matches", "entries", "open_entry"]
 
@@ -38,16 +38,12 @@ def _is_sequence(folder: Path) -> bool:
 
 def matches(root: Path) -> bool:
     """True when a sub-folder of ``root`` holds ``groundtruth.txt`` and a GOT-10k label file."""
-    return any(_is_sequence(p) for p in root.iterdir() if p.is_dir() and not p.name.startswith("."))
+    return any(_is_sequence(p) for p in visible_folders(root))
 
 
 def entries(root: Path) -> list:
     """``[(name, folder, None), ...]``: sub-folders with ``groundtruth.txt`` (not hidden)."""
-    return [
-        (p.name, p, None)
-        for p in root.iterdir()
-        if p.is_dir() and not p.name.startswith(".") and (p / "groundtruth.txt").is_file()
-    ]
+    return groundtruth_entries(root)
 
 
 def absent_frames(folder: Path, n_frames: int) -> np.ndarray | None:

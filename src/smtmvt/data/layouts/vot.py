@@ -26,7 +26,7 @@ import numpy as np
 from ..errors import SequenceError
 from ..files import read_regular_bytes
 from ..frames import list_images
-from .common import images_of, sequence_from_files
+from .common import groundtruth_entries, images_of, sequence_from_files, visible_folders
 
 __all__ = ["NAME", "ABSENT_RULE", "matches", "entries", "open_entry", "parse_regions"]
 
@@ -48,16 +48,12 @@ def _is_sequence(seq: Path) -> bool:
 
 def matches(root: Path) -> bool:
     """True when a sub-folder has ``groundtruth.txt`` and ``color/`` or images of its own."""
-    return any(_is_sequence(p) for p in root.iterdir() if p.is_dir() and not p.name.startswith("."))
+    return any(_is_sequence(p) for p in visible_folders(root))
 
 
 def entries(root: Path) -> list:
-    """``[(name, folder, None), ...]`` for the sub-folders with ``groundtruth.txt``."""
-    return [
-        (p.name, p, None)
-        for p in root.iterdir()
-        if p.is_dir() and not p.name.startswith(".") and (p / "groundtruth.txt").is_file()
-    ]
+    """``[(name, folder, None), ...]``: sub-folders with ``groundtruth.txt`` (not hidden)."""
+    return groundtruth_entries(root)
 
 
 def _region(fields: list) -> np.ndarray:
