@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 from scipy.optimize import minimize
 
-from smtmvt.confidence import CONFIDENCE, LOST_BELOW, ConfidenceModel
+from smtmvt.confidence import CONFIDENCE, LOST_BELOW, ConfidenceModel, Evidence, confidence
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from lost_calibration import FEATURES, LOST_OVERLAP, calibration_error, precision_recall, reliability
@@ -50,10 +50,10 @@ def read_frames(path: Path) -> tuple[np.ndarray, np.ndarray]:
     return x, tracked
 
 
-def scores(model: ConfidenceModel, x: np.ndarray) -> np.ndarray:
-    """The linear score of each frame ``(m,)`` (:func:`smtmvt.confidence.confidence`'s)."""
-    w = np.array([model.peak, model.apce, model.cost, model.streak]) * SIGNS
-    return model.bias + x @ w
+def confidences(model: ConfidenceModel, x: np.ndarray) -> np.ndarray:
+    """Each frame's confidence ``(m,)`` under ``model``, by the package's own mapping
+    (:func:`smtmvt.confidence.confidence`) of the features ``x`` ``(m, 4)``."""
+    return np.array([confidence(Evidence(*np.exp(f[:3]), int(f[3])), model) for f in x])
 
 
 def fit(x: np.ndarray, tracked: np.ndarray) -> ConfidenceModel:
@@ -76,7 +76,7 @@ def fit(x: np.ndarray, tracked: np.ndarray) -> ConfidenceModel:
 
 
 def report(label: str, model: ConfidenceModel, x: np.ndarray, tracked: np.ndarray) -> None:
-    c = 1.0 / (1.0 + np.exp(-scores(model, x)))
+    c = confidences(model, x)
     p, r = precision_recall(c < LOST_BELOW, tracked)
     table = reliability(c, tracked)
     print(f"{label}: {len(c)} frames, {np.mean(~tracked):.1%} truly lost, {np.mean(c < LOST_BELOW):.1%} called lost")

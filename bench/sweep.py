@@ -132,7 +132,7 @@ def run(args) -> None:
             tmp.write_text(json.dumps(rec))
             tmp.replace(tag_dir / f"{name}#{k}.json")
             print(f"  {name:<12} #{k}  {rec['avg_overlap']:.3f}  {rec['fps']:.1f} fps", flush=True)
-    show(argparse.Namespace(tags=[args.tag], out=args.out, seeds=args.seeds, complete=False))
+    show(argparse.Namespace(tags=[args.tag], out=args.out, seeds=args.seeds, complete=False, split=None))
 
 
 def seed_indices(text: str) -> list[int]:
@@ -201,7 +201,7 @@ def show(args) -> None:
             f"{tag}: mean {_mean(per_seq[s] for s in done):.3f} over {len(done)} sequences; "
             f"per seed {' / '.join(f'{v:.3f}' for v in per_k)}; {parts}; {fps:.1f} fps"
         )
-        if getattr(args, "split", None):
+        if args.split:
             halves = json.loads(Path(args.split).read_text())
             print("  " + "; ".join(_half(per_seq, done, h, halves[h]) for h in ("tune", "check")))
 
