@@ -6,7 +6,8 @@ Usage::
     OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 python bench/speed.py --dataset DIR [--frames N] [--rounds R]
 
 Loads the frames first (no I/O in the timing), then tracks them with ``smtmvt``
-(the default :class:`smtmvt.TrackerConfig`, or ``--config`` fields) and with ``opencv-csrt`` (OpenCV's
+(the default :class:`smtmvt.TrackerConfig`, or ``--paper``: :meth:`~smtmvt.TrackerConfig.paper`;
+with ``--config`` fields) and with ``opencv-csrt`` (OpenCV's
 defaults, driven by the evaluation's adapter), alternately for ``--rounds``
 rounds, with BLAS and OpenCV limited to one thread. Prints smtmvt's
 milliseconds per frame for each stage (warp, features, solve, likelihood,
@@ -111,8 +112,10 @@ def main() -> None:
     ap.add_argument("--frames", type=int, default=120)
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--config", default="{}", help="TrackerConfig fields as JSON (default: the defaults)")
+    ap.add_argument("--paper", action="store_true", help="TrackerConfig.paper() (with the --config fields)")
     args = ap.parse_args()
-    config = TrackerConfig(**{**json.loads(args.config), "seed": 0})
+    fields = {**json.loads(args.config), "seed": 0}
+    config = TrackerConfig.paper(**fields) if args.paper else TrackerConfig(**fields)
     cv2.setNumThreads(1)
     paths = sequence_folders(args.dataset) if args.dataset else args.sequence
     ratios = {Path(p).name: measure(p, args.frames, args.rounds, config) for p in paths}
