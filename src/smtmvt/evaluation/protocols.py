@@ -77,6 +77,7 @@ from .metrics import PRECISION_INDEX, SequenceScore
 
 __all__ = [
     "PROTOCOLS",
+    "PROTOCOL_TITLES",
     "TRE_SEGMENTS",
     "TRE_MIN_LENGTH",
     "SRE_SHIFTS",
@@ -91,6 +92,12 @@ __all__ = [
 
 #: the protocols, in report order
 PROTOCOLS = ("ope", "tre", "sre")
+#: their names in the report's titles
+PROTOCOL_TITLES = {
+    "ope": "OTB one-pass evaluation",
+    "tre": "OTB temporal robustness evaluation, TRE",
+    "sre": "OTB spatial robustness evaluation, SRE",
+}
 #: ``segNum`` of ``main_running.m`` / ``splitSeqTRE.m``
 TRE_SEGMENTS = 20
 #: ``minNum`` of ``splitSeqTRE.m``: the fewest frames a TRE segment has

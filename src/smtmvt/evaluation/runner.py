@@ -173,6 +173,12 @@ def _pair_id(tracker: str, sequence: str, repeat: int, part: tuple[str, str] | N
     return (tracker, sequence) if repeat == 0 else (tracker, sequence, repeat)
 
 
+def _on(task: PairTask) -> str:
+    """``"tracker on sequence"`` (`` (tre seg-03)`` for a segment), for messages."""
+    text = f"{task.tracker} on {task.sequence.name}"
+    return text if task.part is None else f"{text} ({task.part[0]} {task.part[1]})"
+
+
 def _part_text(part: tuple[str, str] | None) -> str:
     """The ``part`` of an ``errors.json`` entry: ``""`` (OPE) or ``"tre/seg-03"``."""
     return "" if part is None else "/".join(part)
@@ -386,7 +392,7 @@ class _Book:
                 run, part = self.run, task.part
                 run.write_result(task.tracker, name, outcome.boxes, outcome.times, task.repeat, record, part=part)
             except OSError as exc:  # this pair's files only (a name too long, ...): the rest go on
-                why = f"{task.label}: cannot write its result: {describe(exc)}"
+                why = f"{_on(task)}: cannot write its result: {describe(exc)}"
                 self.record(task.tracker, name, why, task.repeat, _part_text(task.part))
                 return
             self.log.clear(task.tracker, name, task.repeat, _part_text(task.part))
@@ -452,7 +458,7 @@ def _needs_running(book: _Book, task: PairTask, record: dict) -> bool:
         why = run.result_problem(task.tracker, name, task.n_frames, r, part=part)
         why = why or run.record_problem(task.tracker, name, record, r, part=part)
     except OSError as exc:  # its result file cannot even be looked at (a name too long)
-        message = f"{task.label}: cannot check its result file: {describe(exc)}"
+        message = f"{_on(task)}: cannot check its result file: {describe(exc)}"
         book.record(task.tracker, name, message, r, _part_text(part))
         return False
     if why is None:
