@@ -178,3 +178,15 @@ def test_a_run_without_ope_reports_only_its_protocols(dataset, tmp_path, tracker
     assert run.ok and run.report["trackers"] == {} and list(run.report["protocols"]) == ["tre"]
     assert not run.report["errors"]  # no OPE result is missing: OPE was not asked for
     assert sorted(p.name for p in (out / "report").iterdir()) == ["index.html", "summary.json", "tre"]
+
+
+def test_the_toolkits_omitted_start_frames_apply_to_an_otb_matrix(tmp_path, trackers):
+    spec = {"Matrix": dict(start=(10, 10), step=(0.5, 0.25), side=(16, 12))}
+    data = make_otb_dataset(tmp_path / "otb", specs=spec, n_frames=60, size=(48, 64))
+    run = run_evaluation(data, ["test-cv"], tmp_path / "run", protocols="tre", progress=False, report=True)
+    assert run.ok
+    rd = RunDir(tmp_path / "run")
+    # initOmit/matrix.txt "36 40": the last segment starts at frame 41 (test_protocols works it out)
+    assert rd.read_record("test-cv", "Matrix", part=("tre", "seg-20"))["start"] == 40
+    assert len(rd.read_result("test-cv", "Matrix", part=("tre", "seg-20"))) == 20
+    assert run.report["protocols"]["tre"]["trackers"]["test-cv"]["n_sequences"] == 1

@@ -14,6 +14,7 @@ from smtmvt.evaluation.metrics import score_sequence
 from smtmvt.evaluation.protocols import (
     SRE_SHIFTS,
     Segment,
+    init_omit,
     parse_protocols,
     pool_scores,
     segments,
@@ -138,3 +139,16 @@ def test_pooling_sums_hits_over_summed_lengths():
     assert pooled.auc == pytest.approx(np.mean(pooled.success))
     assert pooled.n_frames == 7 and pooled.overlaps.shape == (7,)
     assert pooled.avg_overlap == pytest.approx(3 / 7)
+
+
+def test_the_toolkits_omitted_start_frames_are_applied_to_otb_sequences_only():
+    # initOmit/matrix.txt is "36 40". len = 60: candidates 1..35, 41..60; usable (60 - f + 1 >= 20)
+    # f <= 41: 1..35, 41 -> E = 36. floor(1 : 36/19 : 36) = floor(1, 2.89, 4.79, 6.68, 8.58,
+    # 10.47, 12.37, 14.26, 16.16, 18.05, 19.95, 21.84, 23.74, 25.63, 27.53, 29.42, 31.32, 33.21,
+    # 35.11), then 36; positions 1..35 are frames 1..35, position 36 is frame 41.
+    assert init_omit("Matrix") == ((36, 40),) and init_omit("matrix", layout="vot") == ()
+    assert init_omit("Jogging-1") == ((61, 83),) and init_omit("Crossing") == ()
+    gt = np.tile([10.0, 19.0, 31.0, 45.0], (60, 1))
+    expected_1based = [1, 2, 4, 6, 8, 10, 12, 14, 16, 18, 19, 21, 23, 25, 27, 29, 31, 33, 35, 41]
+    assert [s + 1 for s in tre_starts(gt, init_omit("Matrix"))] == expected_1based
+    assert [s.start + 1 for s in segments("tre", gt, init_omit("Matrix"))] == expected_1based

@@ -1,5 +1,6 @@
 """OTB's three protocols: where each run of a tracker starts, with which box, and how the
-runs of one sequence are pooled. Pure functions of the ground truth (no files, no images).
+runs of one sequence are pooled. Functions of the ground truth (no images; the one file read
+is the toolkit's table of omitted start frames shipped with the package, :func:`init_omit`).
 
 OTB (Wu, Lim, Yang, CVPR 2013; TPAMI 2015) evaluates a tracker three ways:
 
@@ -34,6 +35,10 @@ TRE segments (``splitSeqTRE.m``, ``segNum = 20``, ``minNum = 20``)
        box, and runs to the last frame of the sequence.
     A sequence with no candidate 20 frames before its end has no segment (MATLAB fails
     there: ``endSegIdx`` undefined); :func:`tre_starts` raises ``ValueError``.
+    The toolkit's ``initOmit/`` files (27 OTB sequences: Basketball, Coke, ... Woman) are
+    shipped as ``data/tre_init_omit.json`` and applied to the sequences of those names in an
+    OTB-layout folder (:func:`init_omit`); they are frame numbers from 1, and each of those
+    sequences starts at image 1 in the toolkit and here.
 
 SRE boxes (``shiftInitBB.m``; ``main_running.m``'s ``shiftTypeSet`` gives the order)
     The run starts on the first TRE start (frame 1 unless it is omitted or its ground truth
@@ -68,11 +73,15 @@ Scoring (``genPerfMat.m``, ``calcSeqErrRobust.m``)
 
 from __future__ import annotations
 
+import functools
+import json
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from importlib import resources
 
 import numpy as np
 
+from ..data import canonical_name
 from .metrics import PRECISION_INDEX, SequenceScore
 
 __all__ = [
@@ -83,6 +92,7 @@ __all__ = [
     "SRE_SHIFTS",
     "Segment",
     "tre_starts",
+    "init_omit",
     "shift_box",
     "segments",
     "start_box",
@@ -193,6 +203,23 @@ def tre_starts(
     return [int(candidates[p - 1]) for p in positions]
 
 
+@functools.cache
+def _omit_table() -> dict[str, tuple[tuple[int, int], ...]]:
+    text = resources.files(__package__).joinpath("data/tre_init_omit.json").read_text(encoding="utf-8")
+    table = json.loads(text)["sequences"]
+    return {canonical_name(name): tuple((int(a), int(b)) for a, b in ranges) for name, ranges in table.items()}
+
+
+def init_omit(sequence: str, layout: str = "otb") -> tuple[tuple[int, int], ...]:
+    """The OTB toolkit's ``initOmit/<seq>.txt`` ranges of ``sequence`` (inclusive 1-based
+    frames that are no TRE start; ``data/tre_init_omit.json``), matched by
+    :func:`~smtmvt.data.canonical_name`; ``()`` for other sequences and for folders of
+    another ``layout`` than ``"otb"`` (VOT's "basketball" is not OTB's)."""
+    if layout != "otb":
+        return ()
+    return _omit_table().get(canonical_name(sequence), ())
+
+
 def _mround(v: float) -> float:
     """MATLAB's ``round``: halves away from zero (Python's ``round`` takes halves to even)."""
     return float(np.sign(v) * np.floor(abs(v) + 0.5))
@@ -238,8 +265,8 @@ def segments(protocol: str, gt, omit: Iterable[tuple[int, int]] = ()) -> list[Se
 
     OPE: one run from frame 0 (our runner's rule: the toolkit's OPE starts on the first TRE
     start, which is frame 0 whenever frame 1 is annotated). TRE: :func:`tre_starts`, named
-    ``seg-01`` ... SRE: the 12 :data:`SRE_SHIFTS` from the first TRE start. ValueError when
-    TRE or SRE has no start (:func:`tre_starts`)."""
+    ``seg-01`` ... SRE: the 12 :data:`SRE_SHIFTS` from the first TRE start. ``omit``: the
+    sequence's :func:`init_omit`. ValueError when TRE or SRE has no start (:func:`tre_starts`)."""
     if protocol == "ope":
         return [Segment("ope", "", 0)]
     starts = tre_starts(gt, omit)

@@ -72,10 +72,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ..data import detect_layout
 from ..interrupts import reraise_interruption
 from .pairs import PairOutcome, PairTask, describe, run_pair, sequence_seed
 from .progress import Progress
-from .protocols import parse_protocols, segments, start_box
+from .protocols import init_omit, parse_protocols, segments, start_box
 from .rundir import MAX_REPEAT, RunDir, RunInfo
 from .settings import settings_digest, tracker_settings
 from .trackers import TrackerSpec, UnknownTrackerError, accepts_keyword, tracker_spec
@@ -195,9 +196,10 @@ class _Start:
     n_frames: int
 
 
-def _starts(seq, protocols: list[str], max_frames: int | None) -> dict[str, list[_Start] | str]:
-    """``{protocol: runs}`` of ``seq`` (:mod:`.protocols`), or ``{protocol: message}`` when
-    the protocol has no run there (no ground truth, too short, frame 0 unreadable for SRE)."""
+def _starts(seq, protocols: list[str], max_frames: int | None, layout: str) -> dict[str, list[_Start] | str]:
+    """``{protocol: runs}`` of ``seq`` (:mod:`.protocols`; ``layout``: the dataset's, for
+    :func:`.protocols.init_omit`), or ``{protocol: message}`` when the protocol has no run
+    there (no ground truth, too short, frame 0 unreadable for SRE)."""
     from ..data.boxes import ONE_BASED_OFFSET
 
     n_seq = len(seq) if max_frames is None else min(len(seq), max_frames)
@@ -218,7 +220,7 @@ def _starts(seq, protocols: list[str], max_frames: int | None) -> dict[str, list
                     tuple((start_box(s, gt, size) - ONE_BASED_OFFSET).tolist()),
                     n_seq - s.start,
                 )
-                for s in segments(protocol, gt)
+                for s in segments(protocol, gt, init_omit(seq.name, layout))
             ]
         except Exception as exc:  # noqa: BLE001 - bad data of one sequence: an error of its pairs
             reraise_interruption(exc)
@@ -323,7 +325,8 @@ def run_evaluation(
         for sname, message in unknown_seqs + seq_errors:
             for spec in known:
                 book.record(spec.name, sname, message)
-        starts = {seq.name: _starts(seq, protocols, info.max_frames) for seq in seqs}
+        layout = detect_layout(dataset_dir)
+        starts = {seq.name: _starts(seq, protocols, info.max_frames, layout) for seq in seqs}
         tasks = _plan(book, known, seqs, tracker_options, probes, starts, parallel=scheduler is not None or workers > 1)
         with Progress(len(tasks), sum(t.n_frames for t in tasks), progress) as bars:
 

@@ -36,7 +36,7 @@ import numpy as np
 from ..data import SequenceError, canonical_name
 from .groundtruth import GroundTruth
 from .metrics import SequenceScore, aggregate, score_sequence
-from .protocols import pool_scores, segments
+from .protocols import init_omit, pool_scores, segments
 from .rundir import RunDir, RunInfo
 from .trackers import UnknownTrackerError, tracker_spec
 
@@ -138,7 +138,8 @@ def score_run(
             errors.append({"tracker": None, "sequence": seq, "error": str(exc), "stage": "report"})
     entries, all_runs = {}, {}
     for t in trackers:
-        all_runs[t], pair_errors = _score_tracker(run, info, t, scored_seqs, gts, repeat, invalid, protocol)
+        how = (invalid, protocol, gt.layout)
+        all_runs[t], pair_errors = _score_tracker(run, info, t, scored_seqs, gts, repeat, how)
         for seq, msg in pair_errors.items():
             if (t, canonical_name(seq)) in failed_in_run:
                 pair_errors[seq] = "failed in the run (errors.json)"
@@ -187,7 +188,9 @@ def _runs_needed(run: RunDir, tracker: str, repeat: int) -> int:
     return repeat
 
 
-def _score_tracker(run, info, tracker, seqs, gts, repeat, invalid, protocol) -> tuple[dict[str, _Runs], dict[str, str]]:
+def _score_tracker(run, info, tracker, seqs, gts, repeat, how) -> tuple[dict[str, _Runs], dict[str, str]]:
+    """``how``: ``(invalid rule, protocol, dataset layout)``."""
+    invalid, protocol, layout = how
     runs: dict[str, _Runs] = {}
     problems: dict[str, str] = {}
     offsets = _import_offsets(run, tracker)
@@ -202,7 +205,7 @@ def _score_tracker(run, info, tracker, seqs, gts, repeat, invalid, protocol) -> 
                     )
                     parts: list = [None]
                 else:
-                    score, parts = _score_segments(run, tracker, seq, r, gt, invalid, protocol)
+                    score, parts = _score_segments(run, tracker, seq, r, gt, invalid, (protocol, layout))
                     got.scores.append(score)
                 for part in parts:
                     times = run.read_times(tracker, seq, r, part=part)
@@ -240,11 +243,13 @@ def _read_boxes(run: RunDir, tracker: str, seq: str, r: int, part=None) -> tuple
         raise ValueError(str(exc).replace(str(run.root / rel), str(rel))) from None
 
 
-def _score_segments(run: RunDir, tracker: str, seq: str, r: int, gt: np.ndarray, invalid: str, protocol: str):
-    """``(pooled score, parts)`` of ``seq``'s TRE or SRE runs (module notes); ValueError
-    naming the first missing or unusable file, or why the protocol has no run there."""
+def _score_segments(run: RunDir, tracker: str, seq: str, r: int, gt: np.ndarray, invalid: str, which):
+    """``(pooled score, parts)`` of ``seq``'s TRE or SRE runs (module notes; ``which``:
+    ``(protocol, dataset layout)``); ValueError naming the first missing or unusable file, or
+    why the protocol has no run there."""
+    protocol, layout = which
     try:
-        runs = segments(protocol, gt)
+        runs = segments(protocol, gt, init_omit(seq, layout))
     except ValueError as exc:
         raise ValueError(f"{seq}: no {protocol.upper()} run: {exc}") from None
     scores, parts = [], []
