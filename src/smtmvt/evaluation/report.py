@@ -263,7 +263,15 @@ def _top_summary(run: RunDir, scored: dict[str, Summary], errors: list, settings
 
 def _empty_summary(settings: dict) -> Summary:
     """The top summary of a run without OPE results (its protocols' summaries go in it)."""
-    return Summary({}, [], [], {}, None, [], settings | {"protocol": "no OPE results in this run"})
+    return Summary(
+        {},
+        [],
+        [],
+        {},
+        None,
+        [],
+        settings | {"protocol": "No OPE results in this run; its other protocols are linked below"},
+    )
 
 
 def _write_index(run: RunDir, summary: Summary) -> None:
