@@ -190,3 +190,11 @@ def test_the_toolkits_omitted_start_frames_apply_to_an_otb_matrix(tmp_path, trac
     assert rd.read_record("test-cv", "Matrix", part=("tre", "seg-20"))["start"] == 40
     assert len(rd.read_result("test-cv", "Matrix", part=("tre", "seg-20"))) == 20
     assert run.report["protocols"]["tre"]["trackers"]["test-cv"]["n_sequences"] == 1
+
+
+def test_an_unknown_protocol_is_refused_before_anything_runs(dataset, tmp_path, capsys):
+    with pytest.raises(SystemExit) as stop:
+        evaluate_cli(dataset, tmp_path / "run", "--trackers", "opencv-mosse", "--protocol", "ope,xre")
+    assert stop.value.code == 2
+    assert "protocol xre: expected one or more of ope, tre, sre" in capsys.readouterr().err
+    assert not (tmp_path / "run").exists()
