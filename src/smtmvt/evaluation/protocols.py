@@ -14,7 +14,9 @@ The rules below are those of the OTB MATLAB toolkit (``tracker_benchmark_v1.0``:
 files named are in its ``util/`` folder and its root; the Python port of the same toolkit,
 ``scripts/butil/split_seq.py`` and ``shift_bbox.py``, follows them but has bugs there
 — its ``down`` shift moves the width, its shifts round instead of ceil — so the MATLAB code
-is the reference). All frame numbers in the toolkit are 1-based; here start frames are
+is the reference; it was read in the copy redistributed as
+``zhangzheng0131/Tracker_Benchmark_tb100``, whose local edits, marked "by zz", are outside
+the lines used here). All frame numbers in the toolkit are 1-based; here start frames are
 **0-based indices** and boxes are **1-based ``(x, y, w, h)`` in pixels**, as in OTB's files.
 
 TRE segments (``splitSeqTRE.m``, ``segNum = 20``, ``minNum = 20``)
