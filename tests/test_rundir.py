@@ -231,3 +231,51 @@ def test_clean_up_touches_only_the_files_the_run_writes(tmp_path):
     assert [p for p in ours if p.exists()] == []
     assert [p for p in theirs if not p.exists()] == []
     assert any(f"removed {len(ours)} temporary file" in n for n in notes)
+
+
+def test_segment_files_of_tre_and_sre_runs(tmp_path):
+    run = RunDir(tmp_path / "run")
+    root = (tmp_path / "run").resolve()
+    tre = root / "results" / "kcf" / "tre" / "Girl"
+    assert run.result_path("kcf", "Girl", part=("tre", "seg-03")) == tre / "seg-03.txt"
+    assert run.times_path("kcf", "Girl", part=("tre", "seg-03")) == tre / "times" / "seg-03_time.txt"
+    assert run.record_path("kcf", "Girl", 2, part=("sre", "left")) == (
+        root / "results" / "kcf" / "repeat-2" / "sre" / "Girl" / "meta" / "left.json"
+    )
+    with pytest.raises(ValueError, match="protocol 'ope' has no segments"):
+        run.result_path("kcf", "Girl", part=("ope", "x"))
+    with pytest.raises(ValueError, match="invalid sequence name"):
+        run.result_path("kcf", "Girl", part=("tre", "../x"))
+    run.write_result("kcf", "Girl", np.ones((3, 4)), np.ones(3), part=("tre", "seg-01"), record={"start": 4})
+    assert run.result_problem("kcf", "Girl", 3, part=("tre", "seg-01")) is None
+    assert "seg-01.txt: 3 lines for 2 frames of Girl tre seg-01" in run.result_problem(
+        "kcf", "Girl", 2, part=("tre", "seg-01")
+    )
+    assert run.result_problem("kcf", "Girl", 3) == "missing"  # the OPE file is another file
+    assert run.read_record("kcf", "Girl", part=("tre", "seg-01")) == {"start": 4}
+
+
+def test_errors_are_kept_per_part_and_run_json_keeps_its_protocols(tmp_path):
+    run = RunDir(tmp_path / "run")
+    run.root.mkdir()
+    log = run.errors()
+    log.set("kcf", "Girl", "boom", 0, "tre/seg-02")
+    log.set("kcf", "Girl", "bang", 0, "tre/seg-05")
+    log.set("kcf", "Girl", "ope", 0)
+    log.clear("kcf", "Girl", 0, "tre/seg-02")
+    entries = json.loads(run.errors_json.read_text())
+    assert entries == [
+        {"tracker": "kcf", "sequence": "Girl", "repeat": 0, "error": "bang", "part": "tre/seg-05"},
+        {"tracker": "kcf", "sequence": "Girl", "repeat": 0, "error": "ope"},
+    ]
+    assert run.errors().as_list() == entries  # read back as written
+    run = RunDir(tmp_path / "run2")
+    info, _ = run.settle(tmp_path, trackers=["a"], sequences=["S"], max_frames=None, repeat=None, protocols=["tre"])
+    assert info.protocols == ["tre"]  # a new folder holds this command's only
+    run.settle(tmp_path, trackers=["a"], sequences=["S"], max_frames=None, repeat=None, protocols=["sre", "ope"])
+    assert run.info().protocols == ["ope", "tre", "sre"]
+    run.run_json.write_text('{"dataset": "/d"}')
+    assert run.info().protocols == ["ope"]  # a run made before TRE and SRE
+    run.run_json.write_text('{"protocols": ["ope", "xre"]}')
+    with pytest.raises(RunDirError, match="protocols must be among ope, tre, sre"):
+        run.info()

@@ -14,6 +14,11 @@
     scheduler), printed as one ``error:`` line;
     130 after Ctrl-C, 143 after SIGTERM (the run stops cleanly, its workers with it).
 
+    ``--protocol tre`` (or ``sre``, or ``ope,tre,sre``) runs OTB's temporal or spatial
+    robustness evaluation instead of (or beside) OPE: 20 runs per sequence from start frames
+    spread over it, or 12 runs from shifted and scaled first boxes (:mod:`.protocols`), each
+    resumable on its own; their report is in ``RUN_DIR/report/tre/`` and ``.../sre/``.
+
 ``smtmvt report RUN_DIR``
     Rebuilds ``RUN_DIR/report/`` from the stored results (nothing is re-run); ``--import``
     adds foreign per-frame results (published trackers) to the run first. Exit status 0 when
@@ -65,6 +70,15 @@ def _add_evaluate(subparsers) -> None:
     )
     add("--out", required=True, metavar="RUN_DIR", help="run folder: a new or empty folder, or a run folder to resume")
     add("--sequences", metavar="NAMES", help="comma-separated sequence names (default: all; case-insensitive)")
+    add(
+        "--protocol",
+        default="ope",
+        type=_protocols_arg,
+        metavar="ope|tre|sre",
+        help="OTB protocol(s), comma-separated: ope (one pass, default), tre (20 runs from start frames "
+        "spread over each sequence), sre (12 runs from shifted/scaled first boxes); results of each are "
+        "kept side by side in RUN_DIR and reported in report/, report/tre/, report/sre/",
+    )
     add("--workers", type=positive_int, default=1, metavar="N", help="local worker processes (default 1)")
     add(
         "--scheduler",
@@ -151,6 +165,18 @@ def _add_report(subparsers) -> None:
     r.set_defaults(func=cmd_report)
 
 
+def _protocols_arg(text: str) -> list[str]:
+    """``--protocol``'s value: ``"tre"``, ``"ope,sre"`` -> the protocols (argparse error otherwise)."""
+    import argparse
+
+    from .protocols import parse_protocols
+
+    try:
+        return parse_protocols(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
 def _parse_value(text: str):
     try:
         return ast.literal_eval(text)
@@ -176,32 +202,46 @@ def _print_errors(errors, run_dir: Path) -> None:
     print(f"{len(errors)} error(s) (kept in {run_dir / 'errors.json'}):", file=sys.stderr)
     for e in errors:
         where = e["tracker"] if e["sequence"] is None else f"{e['tracker']} / {e['sequence']}"
+        if e.get("part"):
+            where += f" ({e['part'].replace('/', ' ')})"
         if e.get("repeat"):
             where += f" (repeat {e['repeat']})"
         print(f"  error: {where}: {e['error']}", file=sys.stderr)
 
 
-def _print_report(summary, run_dir: Path) -> None:
+def _print_trackers(trackers: dict, indent: str = "  ") -> None:
     def fmt(v, spec):
         return "-" if v is None else format(v, spec)
 
-    for name, t in (summary or {}).get("trackers", {}).items():
+    for name, t in trackers.items():
         auc = fmt(t.get("auc"), ".3f") + ("" if t.get("auc_std") in (None, 0.0) else f" ± {t['auc_std']:.3f}")
         print(
-            f"  {name:<22} AUC {auc}  precision@20 {fmt(t.get('precision20'), '.3f')}  "
+            f"{indent}{name:<22} AUC {auc}  precision@20 {fmt(t.get('precision20'), '.3f')}  "
             f"FPS {fmt(t.get('fps'), '.1f')}  ({t.get('n_sequences', '?')} sequences)"
         )
+
+
+def _print_report(summary, run_dir: Path) -> None:
+    summary = summary or {}
+    protocols = summary.get("protocols") or {}
+    if protocols and summary.get("trackers"):
+        print("OPE:")
+    _print_trackers(summary.get("trackers", {}))
+    for protocol, sub in protocols.items():
+        print(f"{protocol.upper()}:")
+        _print_trackers(sub.get("trackers", {}))
     report_dir = run_dir / "report"
-    for name in ("table.md", "index.html"):
-        if (report_dir / name).exists():
-            print(f"report: {report_dir / name}")
+    for folder in (report_dir, *(report_dir / p for p in protocols)):
+        for name in ("table.md", "index.html"):
+            if (folder / name).exists():
+                print(f"report: {folder / name}")
 
 
 def _print_gaps(summary) -> list:
     """Print the report's own gaps (unusable results; run errors are printed already)."""
     gaps = [e for e in (summary or {}).get("errors", []) if e.get("stage") == "report"]
     for e in gaps:
-        where = " / ".join(str(x) for x in (e.get("tracker"), e.get("sequence")) if x)
+        where = " / ".join(str(x) for x in (e.get("protocol", "").upper(), e.get("tracker"), e.get("sequence")) if x)
         print(f"  report gap: {where or 'general'}: {e.get('error')}", file=sys.stderr)
     return gaps
 
@@ -224,6 +264,7 @@ def cmd_evaluate(args) -> int:
         published=args.published,
         repeat=args.repeat,
         overwrite=args.overwrite,
+        protocols=args.protocol,
     )
     print(
         f"evaluate: {len(run.done)} pair(s) run ({run.frames} frames), {len(run.skipped)} already "
@@ -288,6 +329,6 @@ def cmd_report(args) -> int:
     _print_report(summary, run.root)
     errors = summary.get("errors", [])
     for e in errors:
-        where = " / ".join(str(x) for x in (e.get("tracker"), e.get("sequence")) if x)
+        where = " / ".join(str(x) for x in (e.get("protocol", "").upper(), e.get("tracker"), e.get("sequence")) if x)
         print(f"  error: {where}: {e.get('error')}", file=sys.stderr)
     return 1 if errors else 0

@@ -1,11 +1,16 @@
-"""``index.html`` of a report: settings, the table, every plot and the errors (all escaped)."""
+"""``index.html`` of a report: settings, the table, every plot and the errors (all escaped).
+
+One page per protocol (``report/index.html`` for OPE, ``report/tre/index.html``, ...); the
+top page links the others and shows each tracker's AUC and precision under each protocol.
+"""
 
 from __future__ import annotations
 
 import html
 
+from .protocols import PROTOCOL_TITLES
 from .scoring import Summary
-from .tables import html_table
+from .tables import html_table, protocols_html
 
 __all__ = ["index_html"]
 
@@ -24,7 +29,7 @@ def index_html(summary: Summary) -> str:
     parts = [
         "<!DOCTYPE html>",
         f"<html><head><meta charset='utf-8'><title>OTB evaluation report</title>{_STYLE}</head><body>",
-        "<h1>OTB one-pass evaluation</h1>",
+        f"<h1>{e(PROTOCOL_TITLES[summary.protocol] if summary.trackers else 'OTB evaluation')}</h1>",
         f"<p>Run: <code>{e(s['run_dir'])}</code><br>Dataset: <code>{e(s['dataset'])}</code><br>"
         f"Invalid ground-truth rule: <code>{e(s['invalid'])}</code>. {e(s['protocol'])}.</p>",
     ]
@@ -38,18 +43,28 @@ def index_html(summary: Summary) -> str:
             f"<p>Stochastic trackers were run {int(s['repeat'])} times per sequence with different seeds: "
             "numbers are means over the repeats, ± their sample standard deviation.</p>"
         )
-    parts.append(
-        "<p>Files: <a href='summary.json'>summary.json</a>, <a href='table.md'>table.md</a>, "
-        "<a href='table.csv'>table.csv</a></p>"
-    )
-    parts += ["<h2>Average overlap per sequence</h2>", html_table(summary)]
-    if summary.published:
-        pub = summary.published
-        parts.append(f"<p>Dashed curves: {e(pub['note'])} (<code>{e(pub['source'])}</code>).</p>")
-    parts += _plot_sections(summary)
+    parts += _protocol_section(summary)
+    if summary.trackers or not summary.protocols:
+        parts.append(
+            "<p>Files: <a href='summary.json'>summary.json</a>, <a href='table.md'>table.md</a>, "
+            "<a href='table.csv'>table.csv</a></p>"
+        )
+        parts += ["<h2>Average overlap per sequence</h2>", html_table(summary)]
+        if summary.published:
+            pub = summary.published
+            parts.append(f"<p>Dashed curves: {e(pub['note'])} (<code>{e(pub['source'])}</code>).</p>")
+        parts += _plot_sections(summary)
     parts += _error_list(summary)
     parts.append("</body></html>")
     return "\n".join(parts) + "\n"
+
+
+def _protocol_section(summary: Summary) -> list[str]:
+    """Links to the TRE / SRE pages and the AUC of every protocol (top page only)."""
+    if not summary.protocols:
+        return []
+    links = ", ".join(f"<a href='{p}/index.html'>{p.upper()}</a>" for p in summary.protocols)
+    return ["<h2>Protocols</h2>", f"<p>Full reports: {links}.</p>", protocols_html(summary)]
 
 
 def _figures(summary: Summary, subset: str) -> str:
@@ -84,7 +99,7 @@ def _error_list(summary: Summary) -> list[str]:
         return []
     parts = [f"<h2 class='err'>Errors ({len(summary.errors)})</h2><ul>"]
     for err in summary.errors:
-        who = " / ".join(x for x in (err.get("tracker"), err.get("sequence")) if x)
+        who = " / ".join(x for x in (err.get("protocol", "").upper(), err.get("tracker"), err.get("sequence")) if x)
         parts.append(
             f"<li><b>{e(who or 'general')}</b> [{e(err.get('stage', ''))}]: <code>{e(err['error'])}</code></li>"
         )

@@ -1,4 +1,5 @@
-"""One unit of work of a run: one tracker over one sequence (one repeat), OTB one-pass.
+"""One unit of work of a run: one tracker over one sequence (one repeat), OTB one-pass, or
+over one segment of it (one TRE or SRE run: a start frame and a start box, :mod:`.protocols`).
 
 :class:`PairTask` holds everything a worker needs (picklable: tracker factory, sequence
 paths and ground truth, no pixels); :func:`run_pair` runs it and returns a
@@ -39,6 +40,9 @@ class PairTask:
     ``factory`` is the registry's factory (a module-level function or partial), resolved
     in the driver so that trackers registered at run time work in worker processes too.
     ``fresh_process``: run it in a new Python process (see :class:`~.trackers.TrackerSpec`).
+    ``part``: ``(protocol, segment)`` of a TRE or SRE run, None for OPE; ``start``: its
+    0-based first frame; ``init_box``: its 0-based start box (None: frame 0's ground
+    truth). ``n_frames`` counts from ``start``.
     """
 
     tracker: str
@@ -50,16 +54,23 @@ class PairTask:
     single_thread: bool = False
     repeat: int = 0
     fresh_process: bool = False
+    part: tuple[str, str] | None = None
+    start: int = 0
+    init_box: tuple | None = None
 
     @property
     def key(self) -> tuple:
-        return (self.tracker, self.sequence.name, self.repeat)
+        if self.part is None:
+            return (self.tracker, self.sequence.name, self.repeat)
+        return (self.tracker, self.sequence.name, self.repeat, *self.part)
 
     @property
     def label(self) -> str:
-        """``tracker / sequence`` (``#r`` for repeats after the first), for messages."""
+        """``tracker / sequence`` (`` tre seg-03`` for a segment, ``#r`` for repeats after the
+        first), for messages."""
+        part = "" if self.part is None else f" {self.part[0]} {self.part[1]}"
         suffix = f" #{self.repeat}" if self.repeat else ""
-        return f"{self.tracker} / {self.sequence.name}{suffix}"
+        return f"{self.tracker} / {self.sequence.name}{part}{suffix}"
 
 
 @dataclass
@@ -120,7 +131,7 @@ def run_pair(task: PairTask, on_frame: Callable[[int], None] | None = None) -> P
         else:
             options.pop("seed", None)
         tracker = task.factory(**options)
-        out.boxes, out.times = _track(tracker, seq, task.n_frames, step, on_frame)
+        out.boxes, out.times = _track(tracker, task, step, on_frame)
         out.lost_frames = getattr(tracker, "lost_frames", None)
     except SequenceError as exc:  # names the file and the frame/line itself
         reraise_interruption(exc)
@@ -132,17 +143,18 @@ def run_pair(task: PairTask, on_frame: Callable[[int], None] | None = None) -> P
     return out
 
 
-def _track(tracker, seq, n: int, step: _Step, on_frame) -> tuple[np.ndarray, np.ndarray]:
-    """Boxes ``(n, 4)`` (frame 0: the first ground-truth box) and seconds ``(n,)`` of the
-    tracker's own calls (init, update), excluding reading the frames."""
+def _track(tracker, task: PairTask, step: _Step, on_frame) -> tuple[np.ndarray, np.ndarray]:
+    """Boxes ``(n, 4)`` of frames ``start .. start + n - 1`` (the first: the start box) and
+    seconds ``(n,)`` of the tracker's own calls (init, update), excluding reading the frames."""
+    seq, n, start = task.sequence, task.n_frames, task.start
     step.what = "reading the first ground-truth box"
-    first = tuple(float(v) for v in seq.first_box)
+    first = tuple(float(v) for v in (seq.first_box if task.init_box is None else task.init_box))
     boxes = np.empty((n, 4), dtype=np.float64)
     times = np.empty(n, dtype=np.float64)
     for i in range(n):
         check_stop()
-        step.frame, step.what = i, "reading"
-        frame = seq[i]
+        step.frame, step.what = start + i, "reading"
+        frame = seq[start + i]
         step.what = "tracking"
         t0 = time.perf_counter()
         if i == 0:
@@ -158,14 +170,16 @@ def _track(tracker, seq, n: int, step: _Step, on_frame) -> tuple[np.ndarray, np.
             on_frame(1)
     bad = ~np.isfinite(boxes).all(axis=1)
     if bad.any():
-        step.frame, step.what = int(np.argmax(bad)), "checking the boxes"
-        raise ValueError(f"non-finite box {boxes[step.frame].tolist()} returned")
+        step.frame, step.what = start + int(np.argmax(bad)), "checking the boxes"
+        raise ValueError(f"non-finite box {boxes[step.frame - start].tolist()} returned")
     return boxes, times
 
 
 def _error_message(task: PairTask, step: _Step, exc: Exception) -> str:
     seq = task.sequence
     head = f"{task.tracker} on {seq.name}"
+    if task.part is not None:
+        head += f" ({task.part[0]} {task.part[1]}, from frame {task.start})"
     if step.frame is None:
         msg = f"{head}: {step.what}: {describe(exc)}"
     else:

@@ -27,7 +27,7 @@ __all__ = ["Curve", "select_curves", "plot_curves", "render_curves", "TITLES"]
 TITLES = {
     "success": ("Success plots of OPE", "Overlap threshold", "Success rate"),
     "precision": ("Precision plots of OPE", "Location error threshold", "Precision"),
-}
+}  # "OPE" becomes the protocol's name (TRE, SRE) in their reports
 
 # MATLAB toolkit's plotDrawStyle colours (first ten), then matplotlib's cycle
 _COLORS = [
@@ -107,11 +107,13 @@ def render_curves(
     subtitle: str | None = None,
     formats: Sequence[str] = ("png", "svg"),
     dpi: int = 120,
+    protocol: str = "ope",
 ) -> dict[str, bytes]:
-    """The plot of ``curves`` as ``{format: file bytes}`` (nothing is written)."""
+    """The plot of ``curves`` as ``{format: file bytes}`` (nothing is written); ``protocol``
+    names the evaluation in the title ("Success plots of TRE")."""
     import matplotlib
 
-    fig = _figure(kind, curves, subtitle)
+    fig = _figure(kind, curves, subtitle, protocol)
     out = {}
     # SVG text stays text (searchable, editable), not glyph outlines
     with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "smtmvt"}):
@@ -122,12 +124,13 @@ def render_curves(
     return out
 
 
-def _figure(kind: str, curves: Sequence[Curve], subtitle: str | None):
+def _figure(kind: str, curves: Sequence[Curve], subtitle: str | None, protocol: str = "ope"):
     from matplotlib.figure import Figure
 
     if kind not in TITLES:
         raise ValueError(f"plot kind {kind!r}: expected 'success' or 'precision'")
     title, xlabel, ylabel = TITLES[kind]
+    title = title.replace("OPE", protocol.upper())
     if subtitle:
         title = f"{title} - {subtitle}"
     x = SUCCESS_THRESHOLDS if kind == "success" else PRECISION_THRESHOLDS

@@ -13,6 +13,14 @@ ground truth and writes ``RUN_DIR/report/``:
   the 11 attributes that at least one scored sequence has;
 * ``index.html`` showing all of it, with the errors (:mod:`.page`).
 
+A run that holds OTB's TRE or SRE runs (``run.json``'s ``protocols``, :mod:`.protocols`)
+gets the same files for each of them in ``report/tre/`` and ``report/sre/`` (scored by
+:func:`.scoring.score_run` with ``protocol=``; titles "Success plots of TRE", ...; no
+published curves, which are OPE's), and ``report/summary.json`` has their summaries under
+``protocols``. The OPE files are written only when the run holds OPE results; otherwise
+``report/`` has just ``summary.json`` and an ``index.html`` linking the protocols' pages.
+The top summary's ``errors`` are those of every protocol (each tagged ``protocol``).
+
 Every file is written atomically inside the run (:meth:`RunDir.write_bytes`); a folder that
 is not a run (no ``run.json``) is refused and nothing is created in it. Published scores (the
 benchmark's JSON, averaged over *its* sequence set) are drawn beside ours, labelled with their
@@ -42,7 +50,7 @@ from .paper_table import paper_table_files
 from .plots import Curve, render_curves, select_curves
 from .published import ATTRIBUTE_NAMES, benchmark_label, load_attribute_table, load_published_scores
 from .rundir import RunDir, RunInfo
-from .scoring import PROTOCOL, Summary, score_run
+from .scoring import PROTOCOL_NOTES, Summary, score_run
 from .tables import csv_table, markdown_table
 
 __all__ = ["build_report", "load_groundtruth_source", "REPORT_DIR"]
@@ -130,26 +138,28 @@ def build_report(
         invalid = invalid or gt.absent_rule
         errors: list[dict] = []
         table, source = _attribute_table(attributes, info, published, gt, errors)
-        summary = score_run(
-            run,
-            info,
-            gt,
-            trackers=names,
-            sequences=_sequences(run, info, gt, sequences),
-            repeat=repeat,
-            invalid=invalid,
-            attribute_table=table,
-        )
-        summary.errors[:0] = errors
-        summary.settings = {
+        seqs = _sequences(run, info, gt, sequences)
+        settings = {
             "run_dir": str(run.root), "dataset": str(dataset), "invalid": invalid, "benchmark": benchmark,
-            "top": top, "attributes": source, "max_frames": info.max_frames, "repeat": repeat, "protocol": PROTOCOL,
+            "top": top, "attributes": source, "max_frames": info.max_frames, "repeat": repeat,
         }  # fmt: skip
-        curves = _published(summary, published, benchmark)
-        extra = paper_table_files(summary.trackers, summary.sequences, published, info.max_frames)
-        if paper_table and not extra:
-            summary.errors.append({"error": "--paper-table: the run holds none of the paper's sequences"})
-        _write(run, summary, curves, top, formats, extra)
+        scored = {}
+        for protocol in info.protocols:
+            ours = names if protocol == "ope" else [t for t in names if not run.is_imported(t)]
+            scored[protocol] = score_run(
+                run, info, gt, trackers=ours, sequences=seqs, repeat=repeat, invalid=invalid,
+                attribute_table=table, protocol=protocol,
+            )  # fmt: skip
+            scored[protocol].settings = settings | {"protocol": PROTOCOL_NOTES[protocol]}
+        summary = _top_summary(run, scored, errors, settings, top, formats)
+        if "ope" in scored:
+            curves = _published(summary, published, benchmark)
+            extra = paper_table_files(summary.trackers, summary.sequences, published, info.max_frames)
+            if paper_table and not extra:
+                summary.errors.append({"error": "--paper-table: the run holds none of the paper's sequences"})
+            _write(run, summary, curves, top, formats, extra, run.report_dir)
+        else:
+            _write_index(run, summary)
     return _finite(asdict(summary))
 
 
@@ -233,9 +243,47 @@ def _published(summary: Summary, published, benchmark: str) -> dict[str, dict]:
 # --------------------------------------------------------------------------- writing
 
 
-def _write(run: RunDir, summary: Summary, published: dict, top: int, formats, extra: dict) -> None:
-    out = run.report_dir
-    written = _write_plots(run, summary, published, top, formats)
+def _top_summary(run: RunDir, scored: dict[str, Summary], errors: list, settings: dict, top: int, formats) -> Summary:
+    """Write the TRE and SRE reports (``report/<protocol>/``); return the top summary: OPE's
+    (or an empty one), with the others' summaries in ``protocols`` and every error, once."""
+    for protocol, other in scored.items():
+        if protocol != "ope":
+            _write(run, other, {}, top, formats, {}, run.report_dir / protocol)
+    summary = scored.get("ope") or _empty_summary(settings)
+    summary.errors[:0] = errors
+    summary.protocols = {p: _finite(asdict(other)) for p, other in scored.items() if p != "ope"}
+    seen = {(e.get("tracker"), e.get("sequence"), e.get("error")) for e in summary.errors}
+    for p, other in scored.items():
+        for e in other.errors if p != "ope" else ():
+            if (key := (e.get("tracker"), e.get("sequence"), e.get("error"))) not in seen:
+                seen.add(key)
+                summary.errors.append(e | {"protocol": p})
+    return summary
+
+
+def _empty_summary(settings: dict) -> Summary:
+    """The top summary of a run without OPE results (its protocols' summaries go in it)."""
+    return Summary(
+        {},
+        [],
+        [],
+        {},
+        None,
+        [],
+        settings | {"protocol": "No OPE results in this run; its other protocols are linked below"},
+    )
+
+
+def _write_index(run: RunDir, summary: Summary) -> None:
+    """``index.html`` (links to the protocols' pages) and ``summary.json`` of a run without OPE."""
+    summary.files = ["index.html", "summary.json"]
+    run.write_text(run.report_dir / "index.html", index_html(summary))
+    run.write_text(run.report_dir / "summary.json", json.dumps(_finite(asdict(summary)), indent=1, allow_nan=False))
+
+
+def _write(run: RunDir, summary: Summary, published: dict, top: int, formats, extra: dict, out: Path) -> None:
+    """Every file of one protocol's report in ``out`` (``report/`` for OPE, ``report/tre``, ...)."""
+    written = _write_plots(run, summary, published, top, formats, out)
     tables = {"table.md": markdown_table(summary), "table.csv": csv_table(summary), **extra}
     for name, text in tables.items():
         written.append(run.write_text(out / name, text))
@@ -244,7 +292,7 @@ def _write(run: RunDir, summary: Summary, published: dict, top: int, formats, ex
     run.write_text(out / "summary.json", json.dumps(_finite(asdict(summary)), indent=1, allow_nan=False))
 
 
-def _write_plots(run: RunDir, summary: Summary, published: dict, top: int, formats) -> list[Path]:
+def _write_plots(run: RunDir, summary: Summary, published: dict, top: int, formats, out: Path) -> list[Path]:
     scored = {t: e for t, e in summary.trackers.items() if e["auc"] is not None}
     if not scored:
         return []
@@ -265,8 +313,9 @@ def _write_plots(run: RunDir, summary: Summary, published: dict, top: int, forma
             subtitle = None if subset is None else f"{ATTRIBUTE_NAMES[subset]} ({n_seq})"
             stem = kind if subset is None else f"{kind}_{subset}"
             files = []
-            for fmt, data in render_curves(kind, select_curves(ours, pub, top=top), subtitle, formats).items():
-                files.append(run.write_bytes(run.report_dir / f"{stem}.{fmt}", data))
+            chosen = select_curves(ours, pub, top=top)
+            for fmt, data in render_curves(kind, chosen, subtitle, formats, protocol=summary.protocol).items():
+                files.append(run.write_bytes(out / f"{stem}.{fmt}", data))
             written += files
             summary.plots.append({"kind": kind, "subset": subset or "ALL", "files": [p.name for p in files]})
     return written

@@ -3,7 +3,7 @@
 Layout (``RUN_DIR`` = :attr:`RunDir.root`)::
 
     run.json                                   settings (RunInfo): dataset, trackers, sequences,
-                                               attributes, published, max_frames, repeat,
+                                               protocols, attributes, published, max_frames, repeat,
                                                tracker_settings (per tracker, see .settings)
     errors.json                                [{"tracker", "sequence", "repeat", "error"}, ...]
     .lock                                      held (flock) by the command working on the run
@@ -13,6 +13,12 @@ Layout (``RUN_DIR`` = :attr:`RunDir.root`)::
                                                seed, settings digest (no meta: imported)
     results/<tracker>/repeat-<r>/<seq>.txt     repeat r = 1..N-1 (the same layout one level down)
     results/<tracker>/repeat-<r>/times/<seq>_time.txt, .../repeat-<r>/meta/<seq>.json
+    results/<tracker>[/repeat-<r>]/tre/<seq>/seg-<k>.txt
+                                               TRE run k = 01..20 of <seq>: one line per frame
+                                               from its start frame to the end (.protocols)
+    results/<tracker>[/repeat-<r>]/sre/<seq>/<shift>.txt
+                                               SRE run from the shifted box (left, ..., scale_12);
+                                               both with times/<k>_time.txt and meta/<k>.json beside
     results/<tracker>/import.json              only for imported trackers: provenance
     report/                                    summary.json, table.md/.csv, plots, index.html
 
@@ -63,6 +69,11 @@ IMPORT_JSON = "import.json"
 META = "meta"
 _TRACKER_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]*")
 _REPEAT_DIR = re.compile(r"repeat-([1-9][0-9]*)")
+#: the protocols whose runs are segments with their own files (``part``), see :mod:`.protocols`
+SEGMENTED_PROTOCOLS = ("tre", "sre")
+ALL_PROTOCOLS = ("ope", *SEGMENTED_PROTOCOLS)
+#: ``(protocol, segment)``: one run of TRE or SRE (``("tre", "seg-03")``, ``("sre", "left")``)
+Part = tuple[str, str]
 #: the most repeats a run may hold (``--repeat``): each is a whole pass over the dataset
 MAX_REPEAT = 1000
 
@@ -107,7 +118,9 @@ class RunInfo:
     ``max_frames`` None means every frame; ``repeat`` is the number of repeats of the
     stochastic trackers the folder holds (1 for runs made before repeats existed).
     ``tracker_settings``: ``{tracker: settings record}`` (:mod:`.settings`) of the computed
-    trackers (empty for runs made before it was recorded).
+    trackers (empty for runs made before it was recorded). ``protocols``: the protocols run
+    into the folder (``"ope"``, ``"tre"``, ``"sre"``; ``["ope"]`` for runs made before TRE and
+    SRE existed), which the report scores.
     Keys of ``run.json`` not listed here are kept in ``extra`` and written back.
     """
 
@@ -119,6 +132,7 @@ class RunInfo:
     max_frames: int | None = None
     repeat: int = 1
     tracker_settings: dict = field(default_factory=dict)
+    protocols: list = field(default_factory=lambda: ["ope"])
     extra: dict = field(default_factory=dict)
 
     @classmethod
@@ -128,6 +142,9 @@ class RunInfo:
         info.trackers = list(data.get("trackers") or [])
         info.sequences = list(data.get("sequences") or [])
         info.repeat = data.get("repeat") or 1
+        info.protocols = list(data.get("protocols") or ["ope"])
+        if not set(info.protocols) <= set(ALL_PROTOCOLS):
+            raise RunDirError(f"{path}: protocols must be among {', '.join(ALL_PROTOCOLS)}, got {info.protocols!r}")
         for key in ("max_frames", "repeat"):
             value = getattr(info, key)
             if value is not None and (not isinstance(value, int) or value < 1):
@@ -147,9 +164,10 @@ class RunInfo:
 
 
 class ErrorLog:
-    """``errors.json``: one message per (tracker, sequence, repeat), rewritten atomically on
-    every change. ``sequence`` None: an error of the tracker itself (unknown name, bad
-    options)."""
+    """``errors.json``: one message per (tracker, sequence, repeat, part), rewritten atomically
+    on every change. ``sequence`` None: an error of the tracker itself (unknown name, bad
+    options). ``part``: ``""`` for an OPE pair, ``"<protocol>/<segment>"`` (``"tre/seg-03"``)
+    for one run of TRE or SRE (the entry has a ``"part"`` key then)."""
 
     def __init__(self, run: RunDir):
         self.run = run
@@ -158,26 +176,30 @@ class ErrorLog:
         if path.is_file():
             try:
                 for e in json.loads(path.read_text(encoding="utf-8")):
-                    key = (e.get("tracker"), e.get("sequence"), int(e.get("repeat") or 0))
+                    key = (e.get("tracker"), e.get("sequence"), int(e.get("repeat") or 0), str(e.get("part") or ""))
                     self.entries[key] = str(e.get("error"))
             except (ValueError, TypeError, AttributeError, OSError):
                 self.entries = {}  # a damaged errors.json is rebuilt from this run
 
-    def set(self, tracker, sequence, error: str, repeat: int = 0) -> None:
-        self.entries[(tracker, sequence, repeat)] = error
+    def set(self, tracker, sequence, error: str, repeat: int = 0, part: str = "") -> None:
+        self.entries[(tracker, sequence, repeat, part)] = error
         self.save()
 
-    def clear(self, tracker, sequence, repeat: int = 0) -> None:
-        if self.entries.pop((tracker, sequence, repeat), None) is not None:
+    def clear(self, tracker, sequence, repeat: int = 0, part: str = "") -> None:
+        if self.entries.pop((tracker, sequence, repeat, part), None) is not None:
             self.save()
 
     def drop(self, keep) -> None:
         """Remove the entries for which ``keep(tracker, sequence, repeat)`` is False."""
-        self.entries = {k: v for k, v in self.entries.items() if keep(*k)}
+        self.entries = {k: v for k, v in self.entries.items() if keep(*k[:3])}
         self.save()
 
     def as_list(self) -> list[dict]:
-        return [{"tracker": t, "sequence": s, "repeat": r, "error": e} for (t, s, r), e in self.entries.items()]
+        out = []
+        for (t, s, r, part), e in self.entries.items():
+            entry = {"tracker": t, "sequence": s, "repeat": r, "error": e}
+            out.append(entry | {"part": part} if part else entry)
+        return out
 
     def save(self) -> None:
         self.run.write_text(self.run.errors_json, json.dumps(self.as_list(), indent=1) + "\n")
@@ -226,17 +248,33 @@ class RunDir:
             raise ValueError(f"repeat must be a whole number >= 0, got {repeat!r}")
         return base / f"repeat-{repeat}"
 
-    def result_path(self, tracker: str, sequence: str, repeat: int = 0) -> Path:
-        """``results/<tracker>[/repeat-<r>]/<sequence>.txt``."""
-        return self.tracker_dir(tracker, repeat) / f"{check_sequence_name(sequence)}.txt"
+    def _place(self, tracker: str, sequence: str, repeat: int, part: Part | None) -> tuple[Path, str]:
+        """``(folder, stem)`` of a pair's files: ``results/<tracker>[/repeat-<r>]`` and the
+        sequence for OPE (``part`` None); ``.../<protocol>/<sequence>`` and the segment for one
+        run of TRE or SRE (``part = (protocol, segment)``)."""
+        base, name = self.tracker_dir(tracker, repeat), check_sequence_name(sequence)
+        if part is None:
+            return base, name
+        protocol, segment = part
+        if protocol not in SEGMENTED_PROTOCOLS:
+            raise ValueError(f"protocol {protocol!r} has no segments: expected one of {', '.join(SEGMENTED_PROTOCOLS)}")
+        return base / protocol / name, check_sequence_name(segment)
 
-    def times_path(self, tracker: str, sequence: str, repeat: int = 0) -> Path:
-        """``results/<tracker>[/repeat-<r>]/times/<sequence>_time.txt``."""
-        return self.tracker_dir(tracker, repeat) / "times" / f"{check_sequence_name(sequence)}_time.txt"
+    def result_path(self, tracker: str, sequence: str, repeat: int = 0, *, part: Part | None = None) -> Path:
+        """``results/<tracker>[/repeat-<r>]/<sequence>.txt``; for a segment (``part``)
+        ``results/<tracker>[/repeat-<r>]/<protocol>/<sequence>/<segment>.txt``."""
+        folder, stem = self._place(tracker, sequence, repeat, part)
+        return folder / f"{stem}.txt"
 
-    def record_path(self, tracker: str, sequence: str, repeat: int = 0) -> Path:
-        """``results/<tracker>[/repeat-<r>]/meta/<sequence>.json``: what the result started from."""
-        return self.tracker_dir(tracker, repeat) / META / f"{check_sequence_name(sequence)}.json"
+    def times_path(self, tracker: str, sequence: str, repeat: int = 0, *, part: Part | None = None) -> Path:
+        """``times/<stem>_time.txt`` beside :meth:`result_path`'s file."""
+        folder, stem = self._place(tracker, sequence, repeat, part)
+        return folder / "times" / f"{stem}_time.txt"
+
+    def record_path(self, tracker: str, sequence: str, repeat: int = 0, *, part: Part | None = None) -> Path:
+        """``meta/<stem>.json`` beside :meth:`result_path`'s file: what the result started from."""
+        folder, stem = self._place(tracker, sequence, repeat, part)
+        return folder / META / f"{stem}.json"
 
     def import_json(self, tracker: str) -> Path:
         return self.tracker_dir(tracker) / IMPORT_JSON
@@ -290,45 +328,61 @@ class RunDir:
         return self.write_bytes(path, text.encode("utf-8"))
 
     def write_result(
-        self, tracker: str, sequence: str, boxes, times=None, repeat: int = 0, record: dict | None = None
+        self,
+        tracker: str,
+        sequence: str,
+        boxes,
+        times=None,
+        repeat: int = 0,
+        record: dict | None = None,
+        *,
+        part: Part | None = None,
     ) -> Path:
         """Write one pair's times file (when given), then its result file (the completion
         marker), then its record (when given: what it started from, see
         :meth:`record_problem`), each atomically. ``boxes``: ``(n, 4)`` 0-based; ``times``:
         ``(n,)`` s. The old record goes first, so a record never describes another result."""
-        self._checked(self.record_path(tracker, sequence, repeat)).unlink(missing_ok=True)
+        self._checked(self.record_path(tracker, sequence, repeat, part=part)).unlink(missing_ok=True)
         if times is not None:
             text = "".join(f"{float(t):.9f}\n" for t in np.asarray(times, dtype=np.float64).ravel())
-            self.write_text(self.times_path(tracker, sequence, repeat), text)
-        path = write_boxes(self._checked(self.result_path(tracker, sequence, repeat)), boxes)
+            self.write_text(self.times_path(tracker, sequence, repeat, part=part), text)
+        path = write_boxes(self._checked(self.result_path(tracker, sequence, repeat, part=part)), boxes)
         if record is not None:
-            self.write_record(tracker, sequence, record, repeat)
+            self.write_record(tracker, sequence, record, repeat, part=part)
         return path
 
-    def write_record(self, tracker: str, sequence: str, record: dict, repeat: int = 0) -> Path:
+    def write_record(
+        self, tracker: str, sequence: str, record: dict, repeat: int = 0, *, part: Part | None = None
+    ) -> Path:
         """Write the pair's record (what its result started from), atomically."""
-        return self.write_text(self.record_path(tracker, sequence, repeat), json.dumps(record, indent=1) + "\n")
+        path = self.record_path(tracker, sequence, repeat, part=part)
+        return self.write_text(path, json.dumps(record, indent=1) + "\n")
 
     # ------------------------------------------------------------------ reading our own files
-    def read_result(self, tracker: str, sequence: str, repeat: int = 0, n_frames: int | None = None) -> np.ndarray:
+    def read_result(
+        self, tracker: str, sequence: str, repeat: int = 0, n_frames: int | None = None, *, part: Part | None = None
+    ) -> np.ndarray:
         """Boxes ``(n, 4)`` as written (1-based) of one result file, read strictly
         (:func:`smtmvt.data.read_boxes`); with ``n_frames``, exactly that many rows.
         ``SequenceError`` naming the file (and line) otherwise."""
-        path = self.result_path(tracker, sequence, repeat)
+        path = self.result_path(tracker, sequence, repeat, part=part)
         boxes = read_boxes(path, one_based=True)
         if n_frames is not None and len(boxes) != n_frames:
             rel = path.relative_to(self.root)
-            raise SequenceError(f"{rel}: {len(boxes)} lines for {n_frames} frames of {sequence}", path=path)
+            of = sequence if part is None else f"{sequence} {part[0]} {part[1]}"
+            raise SequenceError(f"{rel}: {len(boxes)} lines for {n_frames} frames of {of}", path=path)
         return boxes
 
-    def result_problem(self, tracker: str, sequence: str, n_frames: int, repeat: int = 0) -> str | None:
+    def result_problem(
+        self, tracker: str, sequence: str, n_frames: int, repeat: int = 0, *, part: Part | None = None
+    ) -> str | None:
         """None when the pair's result file is complete: ``n_frames`` well-formed lines of
         finite numbers. Otherwise why not (``"missing"`` when there is no file)."""
-        path = self.result_path(tracker, sequence, repeat)
+        path = self.result_path(tracker, sequence, repeat, part=part)
         if not path.exists():
             return "missing"
         try:
-            boxes = self.read_result(tracker, sequence, repeat, n_frames)
+            boxes = self.read_result(tracker, sequence, repeat, n_frames, part=part)
         except SequenceError as exc:
             return str(exc)
         bad = ~np.isfinite(boxes).all(axis=1)
@@ -336,16 +390,18 @@ class RunDir:
             return f"{path.relative_to(self.root)}, line {int(np.argmax(bad)) + 1}: not a finite box"
         return None
 
-    def read_record(self, tracker: str, sequence: str, repeat: int = 0) -> dict | None:
+    def read_record(self, tracker: str, sequence: str, repeat: int = 0, *, part: Part | None = None) -> dict | None:
         """The pair's record (:meth:`write_result`), or None when there is none or it cannot
         be read as a JSON object."""
         try:
-            record = json.loads(self.record_path(tracker, sequence, repeat).read_text(encoding="utf-8"))
+            record = json.loads(self.record_path(tracker, sequence, repeat, part=part).read_text(encoding="utf-8"))
         except (OSError, ValueError):
             return None
         return record if isinstance(record, dict) else None
 
-    def record_problem(self, tracker: str, sequence: str, expected: dict, repeat: int = 0) -> str | None:
+    def record_problem(
+        self, tracker: str, sequence: str, expected: dict, repeat: int = 0, *, part: Part | None = None
+    ) -> str | None:
         """None when the pair's complete result was made from ``expected`` (the record this
         command would write: ``first_box`` 1-based, ``n_frames``, ``sequence_frames``,
         ``seed``, ``settings``); otherwise what differs, naming the file and the sequence.
@@ -353,10 +409,10 @@ class RunDir:
         A result without a record (a command killed between the two writes) is checked by
         its first line, which is the first box it started from (the rest is checked for the
         whole tracker by :meth:`settle`); when it passes, the caller writes its record."""
-        rel = self.result_path(tracker, sequence, repeat).relative_to(self.root)
-        record = self.read_record(tracker, sequence, repeat)
+        rel = self.result_path(tracker, sequence, repeat, part=part).relative_to(self.root)
+        record = self.read_record(tracker, sequence, repeat, part=part)
         if record is None:
-            first = self.read_result(tracker, sequence, repeat)[0].tolist()
+            first = self.read_result(tracker, sequence, repeat, part=part)[0].tolist()
             record = {**expected, "first_box": first}
         for key, new in expected.items():
             old = record.get(key)
@@ -364,10 +420,12 @@ class RunDir:
                 return f"{rel}: {_record_change(sequence, key, old, new)}"
         return None
 
-    def read_times(self, tracker: str, sequence: str, repeat: int = 0) -> np.ndarray | None:
+    def read_times(
+        self, tracker: str, sequence: str, repeat: int = 0, *, part: Part | None = None
+    ) -> np.ndarray | None:
         """Seconds per frame ``(n,)`` of one pair, or None when the file is missing or not
         one finite non-negative number per line (or not a regular file: a FIFO is not read)."""
-        path = self.times_path(tracker, sequence, repeat)
+        path = self.times_path(tracker, sequence, repeat, part=part)
         try:
             lines = [line for line in read_regular_bytes(path).decode("utf-8").splitlines() if line.strip()]
             times = np.array([float(v) for v in lines], dtype=np.float64)
@@ -447,6 +505,7 @@ class RunDir:
         published=None,
         overwrite: bool = False,
         tracker_settings: dict | None = None,
+        protocols: Iterable[str] = ("ope",),
     ) -> tuple[RunInfo, list[str]]:
         """Check this command's settings against the folder's and write ``run.json``.
 
@@ -458,7 +517,8 @@ class RunDir:
         differs, unless ``overwrite`` (then that tracker's results, its errors and the report
         are removed first). ``repeat`` None takes the folder's count; a larger one is stored
         (later repeats are added), a smaller one is used for this command only. Tracker and
-        sequence lists are merged (first-seen order). Returns ``(info, notes)``; the
+        sequence lists are merged (first-seen order), and so are ``protocols`` (kept in
+        ``ope, tre, sre`` order; a new folder holds this command's only). Returns ``(info, notes)``; the
         returned ``info.repeat`` is this command's count. Call under :meth:`locked`.
         """
         notes: list[str] = []
@@ -478,6 +538,8 @@ class RunDir:
         info.dataset = str(dataset)
         info.trackers = _merge(info.trackers, trackers)
         info.sequences = _merge(info.sequences, sequences)
+        held = set(info.protocols if old is not None else ()) | set(protocols)
+        info.protocols = [p for p in ALL_PROTOCOLS if p in held]
         info.attributes = str(Path(attributes).resolve()) if attributes else info.attributes
         info.published = str(Path(published).resolve()) if published else info.published
         info.max_frames = max_frames

@@ -1,4 +1,5 @@
-"""One-pass evaluation (OPE) runner: every tracker on every sequence, resumable, parallel.
+"""The runner: every tracker on every sequence, resumable, parallel; OTB's one-pass
+evaluation (OPE) and its temporal and spatial robustness evaluations (TRE, SRE).
 
 Usage::
 
@@ -14,6 +15,16 @@ whole sequence without re-initialisation (OTB's OPE). Frame 1's reported box is 
 initial box. ``max_frames`` cuts sequences short for quick checks; such runs are **not**
 OTB-compliant. ``repeat=N`` runs each stochastic tracker N times per sequence with N seeds
 (deterministic trackers once); the report gives the mean and spread over the repeats.
+
+``protocols=["tre"]`` (or ``"sre"``, or several) runs OTB's TRE (20 runs per sequence, each
+from a start frame spread over the sequence with that frame's ground-truth box, to the end)
+or SRE (12 runs from the first frame with the ground-truth box shifted or scaled): where
+and with which box each run starts is :mod:`.protocols` (the OTB toolkit's rules). Each run
+is a unit of work of its own with its own result file (:class:`RunDir`, ``part``), resumed
+like an OPE pair; the start box is frame 0's of the result file and of its record. With
+``max_frames`` the segments are those of the cut sequence. A sequence where TRE or SRE has
+no start (fewer than 20 frames after its last valid one) is an error of that sequence and
+protocol for each tracker.
 
 The run folder
 --------------
@@ -61,9 +72,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ..data import detect_layout
 from ..interrupts import reraise_interruption
 from .pairs import PairOutcome, PairTask, describe, run_pair, sequence_seed
 from .progress import Progress
+from .protocols import init_omit, parse_protocols, segments, start_box
 from .rundir import MAX_REPEAT, RunDir, RunInfo
 from .settings import settings_digest, tracker_settings
 from .trackers import TrackerSpec, UnknownTrackerError, accepts_keyword, tracker_spec
@@ -153,8 +166,66 @@ class RunResult:
         return RunDir(self.run_dir).report_dir
 
 
-def _pair_id(tracker: str, sequence: str, repeat: int) -> tuple:
+def _pair_id(tracker: str, sequence: str, repeat: int, part: tuple[str, str] | None = None) -> tuple:
+    """``(tracker, sequence)`` for OPE repeat 0, ``(tracker, sequence, repeat)`` for later
+    repeats, ``(tracker, sequence, repeat, protocol, segment)`` for a TRE or SRE run."""
+    if part is not None:
+        return (tracker, sequence, repeat, *part)
     return (tracker, sequence) if repeat == 0 else (tracker, sequence, repeat)
+
+
+def _on(task: PairTask) -> str:
+    """``"tracker on sequence"`` (`` (tre seg-03)`` for a segment), for messages."""
+    text = f"{task.tracker} on {task.sequence.name}"
+    return text if task.part is None else f"{text} ({task.part[0]} {task.part[1]})"
+
+
+def _part_text(part: tuple[str, str] | None) -> str:
+    """The ``part`` of an ``errors.json`` entry: ``""`` (OPE) or ``"tre/seg-03"``."""
+    return "" if part is None else "/".join(part)
+
+
+@dataclass(frozen=True)
+class _Start:
+    """One run to make on a sequence: ``part`` (None for OPE), 0-based first frame, 0-based
+    start box (None: frame 0's ground truth), frames to run."""
+
+    part: tuple[str, str] | None
+    start: int
+    init_box: tuple | None
+    n_frames: int
+
+
+def _starts(seq, protocols: list[str], max_frames: int | None, layout: str) -> dict[str, list[_Start] | str]:
+    """``{protocol: runs}`` of ``seq`` (:mod:`.protocols`; ``layout``: the dataset's, for
+    :func:`.protocols.init_omit`), or ``{protocol: message}`` when the protocol has no run
+    there (no ground truth, too short, frame 0 unreadable for SRE)."""
+    from ..data.boxes import ONE_BASED_OFFSET
+
+    n_seq = len(seq) if max_frames is None else min(len(seq), max_frames)
+    out: dict[str, list[_Start] | str] = {}
+    for protocol in protocols:
+        if protocol == "ope":
+            out[protocol] = [_Start(None, 0, None, n_seq)]
+            continue
+        try:
+            if seq.groundtruth is None:
+                raise ValueError("no ground truth")
+            gt = np.asarray(seq.groundtruth, dtype=np.float64)[:n_seq] + ONE_BASED_OFFSET
+            size = tuple(seq[0].shape[:2]) if protocol == "sre" else None
+            out[protocol] = [
+                _Start(
+                    (protocol, s.name),
+                    s.start,
+                    tuple((start_box(s, gt, size) - ONE_BASED_OFFSET).tolist()),
+                    n_seq - s.start,
+                )
+                for s in segments(protocol, gt, init_omit(seq.name, layout))
+            ]
+        except Exception as exc:  # noqa: BLE001 - bad data of one sequence: an error of its pairs
+            reraise_interruption(exc)
+            out[protocol] = f"{seq.name}: no {protocol.upper()} run: {describe(exc)}"
+    return out
 
 
 def run_evaluation(
@@ -172,6 +243,7 @@ def run_evaluation(
     published=None,
     repeat: int | None = None,
     overwrite: bool = False,
+    protocols="ope",
 ) -> RunResult:
     """Run each tracker on each sequence of an OTB-format dataset into ``out_dir``.
 
@@ -196,6 +268,8 @@ def run_evaluation(
     attributes, published : paths stored in ``run.json`` and passed to the report.
     repeat : runs of each stochastic tracker per sequence (default: the folder's count, 1 for
         a new folder).
+    protocols : ``"ope"``, ``"tre"``, ``"sre"``, a comma-separated string or a list of them
+        (module notes); they are added to the folder's ``run.json`` for the report.
     overwrite : discard the folder's results when its frame limit or dataset differs, and a
         tracker's results when its settings differ.
 
@@ -213,6 +287,7 @@ def run_evaluation(
     t_run = time.perf_counter()
     dataset_dir = Path(dataset_dir).expanduser().resolve()
     sequences = _check_arguments(dataset_dir, sequences, max_frames, workers, repeat)
+    protocols = parse_protocols(protocols)
     run = RunDir(out_dir)
     run.check_can_hold_run()  # a folder that is not a run: refused before anything else
     _check_attributes(attributes)
@@ -239,6 +314,7 @@ def run_evaluation(
             published=published,
             overwrite=overwrite,
             tracker_settings={name: settings for name, (_, settings) in probes.items() if settings is not None},
+            protocols=protocols,
         )
         result = RunResult(run.root, [s.name for s in known], [s.name for s in seqs], notes=notes, repeat=info.repeat)
         if info.max_frames is not None:
@@ -249,7 +325,9 @@ def run_evaluation(
         for sname, message in unknown_seqs + seq_errors:
             for spec in known:
                 book.record(spec.name, sname, message)
-        tasks = _plan(book, known, seqs, tracker_options, probes, parallel=scheduler is not None or workers > 1)
+        layout = detect_layout(dataset_dir)
+        starts = {seq.name: _starts(seq, protocols, info.max_frames, layout) for seq in seqs}
+        tasks = _plan(book, known, seqs, tracker_options, probes, starts, parallel=scheduler is not None or workers > 1)
         with Progress(len(tasks), sum(t.n_frames for t in tasks), progress) as bars:
 
             def finish(task: PairTask, outcome: PairOutcome | None, failure: str | None) -> None:
@@ -302,35 +380,45 @@ class _Book:
         # properties of that command, not of the run's data: drop them, this call re-adds its own.
         self.log.drop(lambda t, s, r: s is not None and s in info.sequences)
 
-    def record(self, tracker: str, sequence: str | None, message: str, repeat: int = 0) -> None:
-        self.log.set(tracker, sequence, message, repeat)
-        self.result.errors.append({"tracker": tracker, "sequence": sequence, "repeat": repeat, "error": message})
+    def record(self, tracker: str, sequence: str | None, message: str, repeat: int = 0, part: str = "") -> None:
+        """Enter an error of a pair (``part``: ``""`` for OPE, ``"tre/seg-03"``, or ``"tre"``
+        for the whole protocol on that sequence)."""
+        self.log.set(tracker, sequence, message, repeat, part)
+        entry = {"tracker": tracker, "sequence": sequence, "repeat": repeat, "error": message}
+        self.result.errors.append(entry | {"part": part} if part else entry)
 
     def finish(self, task: PairTask, outcome: PairOutcome | None, failure: str | None) -> None:
         name = task.sequence.name
         if outcome is not None and outcome.ok:
             record = self.records.get(task.key)
             try:
-                self.run.write_result(task.tracker, name, outcome.boxes, outcome.times, task.repeat, record)
+                run, part = self.run, task.part
+                run.write_result(task.tracker, name, outcome.boxes, outcome.times, task.repeat, record, part=part)
             except OSError as exc:  # this pair's files only (a name too long, ...): the rest go on
-                why = f"{task.tracker} on {name}: cannot write its result: {describe(exc)}"
-                self.record(task.tracker, name, why, task.repeat)
+                why = f"{_on(task)}: cannot write its result: {describe(exc)}"
+                self.record(task.tracker, name, why, task.repeat, _part_text(task.part))
                 return
-            self.log.clear(task.tracker, name, task.repeat)
-            self.result.done.append(_pair_id(task.tracker, name, task.repeat))
+            self.log.clear(task.tracker, name, task.repeat, _part_text(task.part))
+            self.result.done.append(_pair_id(task.tracker, name, task.repeat, task.part))
             self.result.frames += task.n_frames
         else:
             message = failure if outcome is None else outcome.error
-            self.record(task.tracker, name, str(message), task.repeat)
+            self.record(task.tracker, name, str(message), task.repeat, _part_text(task.part))
 
 
 def _plan(
-    book: _Book, known: list[TrackerSpec], seqs, tracker_options: dict, probes: dict, parallel: bool
+    book: _Book,
+    known: list[TrackerSpec],
+    seqs,
+    tracker_options: dict,
+    probes: dict,
+    starts: dict[str, dict[str, list[_Start] | str]],
+    parallel: bool,
 ) -> list[PairTask]:
     """The pairs left to do (skipped ones and problems are entered in ``book``, and what
     each task's result starts from in ``book.records``). ``probes``: ``{tracker:
-    (problem, settings)}`` of :func:`_tracker_problem`."""
-    run, info, result = book.run, book.info, book.result
+    (problem, settings)}`` of :func:`_tracker_problem`; ``starts``: ``{sequence:
+    {protocol: runs or message}}`` of :func:`_starts`."""
     tasks: list[PairTask] = []
     for spec in known:
         options = dict(tracker_options.get(spec.name, {}))
@@ -341,39 +429,69 @@ def _plan(
             continue
         digest = settings_digest(settings)
         for seq in seqs:
-            n = len(seq) if info.max_frames is None else min(len(seq), info.max_frames)
-            for r in range(1 if spec.deterministic else info.repeat):
-                seed = sequence_seed(seq.name, base_seed, r)
-                record = _start_record(seq, n, seed, digest)
-                try:
-                    why = run.result_problem(spec.name, seq.name, n, r)
-                    why = why or run.record_problem(spec.name, seq.name, record, r)
-                except OSError as exc:  # its result file cannot even be looked at (a name too long)
-                    message = f"{spec.name} on {seq.name}: cannot check its result file: {describe(exc)}"
-                    book.record(spec.name, seq.name, message, r)
-                    continue
-                if why is None:
-                    if run.read_record(spec.name, seq.name, r) is None:  # killed between the writes
-                        run.write_record(spec.name, seq.name, record, r)
-                    result.skipped.append(_pair_id(spec.name, seq.name, r))
-                    book.log.clear(spec.name, seq.name, r)
-                    continue
-                if why != "missing":
-                    result.notes.append(f"{why}; recomputing")
-                task = PairTask(spec.name, spec.factory, options, seq, n, seed, parallel, r, spec.fresh_process)
-                book.records[task.key] = record
-                tasks.append(task)
+            for r in range(1 if spec.deterministic else book.info.repeat):
+                for protocol, runs in starts[seq.name].items():
+                    if isinstance(runs, str):
+                        book.record(spec.name, seq.name, runs, r, protocol)
+                        continue
+                    if protocol != "ope":
+                        book.log.clear(spec.name, seq.name, r, protocol)
+                    for start in runs:
+                        seed = sequence_seed(_seed_name(seq.name, start.part), base_seed, r)
+                        task = PairTask(
+                            spec.name, spec.factory, options, seq, start.n_frames, seed, parallel, r,
+                            spec.fresh_process, start.part, start.start, start.init_box,
+                        )  # fmt: skip
+                        if _needs_running(book, task, _start_record(seq, start, seed, digest)):
+                            tasks.append(task)
     return tasks
 
 
-def _start_record(seq, n_frames: int, seed: int, digest: str) -> dict:
-    """What a result of ``seq`` starts from (:meth:`RunDir.record_problem`): the first
-    ground-truth box (1-based, as the result's first line), the frames run and the
-    sequence's, the seed and the tracker settings' digest."""
+def _seed_name(sequence: str, part: tuple[str, str] | None) -> str:
+    """What a run's seed derives from (:func:`sequence_seed`): the sequence name for OPE (the
+    seeds of before TRE and SRE), ``"<sequence>/<protocol>/<segment>"`` for their runs."""
+    return sequence if part is None else f"{sequence}/{part[0]}/{part[1]}"
+
+
+def _needs_running(book: _Book, task: PairTask, record: dict) -> bool:
+    """Whether ``task``'s result must be (re)computed; when it must, its ``record`` goes to
+    ``book.records``; when not, the pair is entered as skipped (and a missing record written)."""
+    run, result, name, r, part = book.run, book.result, task.sequence.name, task.repeat, task.part
+    try:
+        why = run.result_problem(task.tracker, name, task.n_frames, r, part=part)
+        why = why or run.record_problem(task.tracker, name, record, r, part=part)
+    except OSError as exc:  # its result file cannot even be looked at (a name too long)
+        message = f"{_on(task)}: cannot check its result file: {describe(exc)}"
+        book.record(task.tracker, name, message, r, _part_text(part))
+        return False
+    if why is None:
+        if run.read_record(task.tracker, name, r, part=part) is None:  # killed between the writes
+            run.write_record(task.tracker, name, record, r, part=part)
+        result.skipped.append(_pair_id(task.tracker, name, r, part))
+        book.log.clear(task.tracker, name, r, _part_text(part))
+        return False
+    if why != "missing":
+        result.notes.append(f"{why}; recomputing")
+    book.records[task.key] = record
+    return True
+
+
+def _start_record(seq, start: _Start, seed: int, digest: str) -> dict:
+    """What a result of ``seq`` starts from (:meth:`RunDir.record_problem`): the start box
+    (1-based, as the result's first line), the frames run and the sequence's, the seed and
+    the tracker settings' digest; for a TRE or SRE run also its 0-based start frame."""
     from ..data.boxes import ONE_BASED_OFFSET
 
-    first = (np.asarray(seq.first_box, dtype=np.float64) + ONE_BASED_OFFSET).tolist()
-    return {"first_box": first, "n_frames": n_frames, "sequence_frames": len(seq), "seed": seed, "settings": digest}
+    box = seq.first_box if start.init_box is None else start.init_box
+    first = (np.asarray(box, dtype=np.float64) + ONE_BASED_OFFSET).tolist()
+    record = {
+        "first_box": first,
+        "n_frames": start.n_frames,
+        "sequence_frames": len(seq),
+        "seed": seed,
+        "settings": digest,
+    }
+    return record if start.part is None else record | {"start": start.start}
 
 
 def _tracker_problem(run: RunDir, spec: TrackerSpec, options: dict) -> tuple[str | None, dict | None]:

@@ -15,27 +15,48 @@ curves. A deterministic tracker has one repeat and spread 0.0; an imported track
 and spread None (unknown), as has a stochastic tracker of a run with ``repeat = 1``. A
 sequence is scored only when all the repeats it needs are there and usable; otherwise it is a
 gap (``errors``) naming the first missing or bad file.
+
+Protocols
+---------
+``protocol="tre"`` or ``"sre"`` scores OTB's TRE or SRE runs (:mod:`.protocols`): a
+sequence's runs (its segments, re-derived from the ground truth as the runner planned them)
+are each scored as an OPE result on their own frames and pooled into one score of the
+sequence (:func:`.protocols.pool_scores`, OTB's ``genPerfMat.m``); from there everything is
+as for OPE (repeats, averages over sequences, attributes). A sequence is scored when every
+one of its runs is there and usable.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
 from ..data import SequenceError, canonical_name
 from .groundtruth import GroundTruth
 from .metrics import SequenceScore, aggregate, score_sequence
+from .protocols import init_omit, pool_scores, segments
 from .rundir import RunDir, RunInfo
 from .trackers import UnknownTrackerError, tracker_spec
 
-__all__ = ["Summary", "score_run", "PROTOCOL"]
+__all__ = ["Summary", "score_run", "PROTOCOL", "PROTOCOL_NOTES"]
 
 PROTOCOL = (
     "OTB OPE: IoU with inclusive pixel extents, success = IoU > t for t in 0:0.05:1, "
     "AUC = mean, precision = centre error <= t px for t in 0..50, score at 20 px, "
     "curves averaged over sequences, frame 1 = ground truth"
 )
+#: what each protocol's numbers are, for the report's settings
+PROTOCOL_NOTES = {
+    "ope": PROTOCOL,
+    "tre": "OTB TRE: 20 runs per sequence from start frames spread over it (OTB's splitSeqTRE), each to the "
+    "end and scored as OPE on its own frames; success and precision counts pooled over a sequence's runs "
+    "(genPerfMat), curves averaged over sequences",
+    "sre": "OTB SRE: 12 runs per sequence from the first frame with the ground-truth box shifted (8) or "
+    "scaled by 0.8, 0.9, 1.1, 1.2 (OTB's shiftInitBB), each scored as OPE (frame 1 = ground truth); "
+    "counts pooled over a sequence's runs (genPerfMat), curves averaged over sequences",
+}
 
 
 @dataclass
@@ -49,7 +70,9 @@ class Summary:
     avg_overlap_std, auc, auc_std, precision20, precision20_std, fps, n_frames, n_valid,
     n_runs}}``), ``attributes`` (``{ATTR: {auc, auc_std, precision20, n_sequences, success,
     precision}}``) and ``errors`` (``{seq: message}``). ``sequences``: the scored sequences;
-    ``table_sequences``: every row of the table (scored or not).
+    ``table_sequences``: every row of the table (scored or not). ``protocol``: ``"ope"``,
+    ``"tre"`` or ``"sre"``; ``protocols``: in the top summary of a report, ``{protocol:
+    summary dict}`` of the other protocols the run holds.
     """
 
     trackers: dict
@@ -61,6 +84,8 @@ class Summary:
     settings: dict
     plots: list = field(default_factory=list)
     files: list = field(default_factory=list)
+    protocol: str = "ope"
+    protocols: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -92,14 +117,16 @@ def score_run(
     repeat: int,
     invalid: str = "otb",
     attribute_table: dict | None = None,
+    protocol: str = "ope",
 ) -> Summary:
-    """Score ``trackers`` x ``sequences`` of ``run`` (first ``repeat`` repeats).
+    """Score ``trackers`` x ``sequences`` of ``run`` (first ``repeat`` repeats) for
+    ``protocol`` (module notes).
 
     ``attribute_table``: ``{canonical name: {codes}}`` for the per-attribute figures.
     Errors of the run (``errors.json``) and every unusable result become ``errors`` entries
     ``{"tracker", "sequence", "error", "stage"}`` (stage ``run`` or ``report``).
     """
-    errors = _run_errors(run)
+    errors = _run_errors(run, protocol)
     failed_in_run = {(e["tracker"], canonical_name(e["sequence"] or "")) for e in errors}
     scored_seqs, gts, gt_problems = [], {}, {}
     for seq in sequences:
@@ -111,7 +138,8 @@ def score_run(
             errors.append({"tracker": None, "sequence": seq, "error": str(exc), "stage": "report"})
     entries, all_runs = {}, {}
     for t in trackers:
-        all_runs[t], pair_errors = _score_tracker(run, info, t, scored_seqs, gts, repeat, invalid)
+        how = (invalid, protocol, gt.layout)
+        all_runs[t], pair_errors = _score_tracker(run, info, t, scored_seqs, gts, repeat, how)
         for seq, msg in pair_errors.items():
             if (t, canonical_name(seq)) in failed_in_run:
                 pair_errors[seq] = "failed in the run (errors.json)"
@@ -131,12 +159,17 @@ def score_run(
         published=None,
         errors=errors,
         settings={},
+        protocol=protocol,
     )
 
 
-def _run_errors(run: RunDir) -> list[dict]:
+def _run_errors(run: RunDir, protocol: str) -> list[dict]:
+    """The run's errors (``errors.json``) of ``protocol`` (an entry's ``part`` names it; none
+    for OPE) and of whole trackers (sequence None)."""
     out = []
     for e in run.errors().as_list():
+        if e["sequence"] is not None and (e.get("part") or "ope").split("/")[0] != protocol:
+            continue
         where = "" if not e["repeat"] else f" (repeat {e['repeat']})"
         out.append({"tracker": e["tracker"], "sequence": e["sequence"], "error": e["error"] + where, "stage": "run"})
     return out
@@ -155,7 +188,9 @@ def _runs_needed(run: RunDir, tracker: str, repeat: int) -> int:
     return repeat
 
 
-def _score_tracker(run, info, tracker, seqs, gts, repeat, invalid) -> tuple[dict[str, _Runs], dict[str, str]]:
+def _score_tracker(run, info, tracker, seqs, gts, repeat, how) -> tuple[dict[str, _Runs], dict[str, str]]:
+    """``how``: ``(invalid rule, protocol, dataset layout)``."""
+    invalid, protocol, layout = how
     runs: dict[str, _Runs] = {}
     problems: dict[str, str] = {}
     offsets = _import_offsets(run, tracker)
@@ -164,11 +199,19 @@ def _score_tracker(run, info, tracker, seqs, gts, repeat, invalid) -> tuple[dict
         got = _Runs([])
         try:
             for r in range(_runs_needed(run, tracker, repeat)):
-                got.scores.append(_score_one(run, tracker, seq, r, gt, offsets.get(canonical_name(seq), 0), invalid))
-                times = run.read_times(tracker, seq, r)
-                if times is not None:
-                    got.frames_timed += times.size
-                    got.seconds += float(times.sum())
+                if protocol == "ope":
+                    got.scores.append(
+                        _score_one(run, tracker, seq, r, gt, offsets.get(canonical_name(seq), 0), invalid)
+                    )
+                    parts: list = [None]
+                else:
+                    score, parts = _score_segments(run, tracker, seq, r, gt, invalid, (protocol, layout))
+                    got.scores.append(score)
+                for part in parts:
+                    times = run.read_times(tracker, seq, r, part=part)
+                    if times is not None:
+                        got.frames_timed += times.size
+                        got.seconds += float(times.sum())
         except (OSError, ValueError) as exc:
             problems[seq] = str(exc)
             continue
@@ -177,14 +220,7 @@ def _score_tracker(run, info, tracker, seqs, gts, repeat, invalid) -> tuple[dict
 
 
 def _score_one(run: RunDir, tracker: str, seq: str, r: int, gt: np.ndarray, offset: int, invalid: str):
-    path = run.result_path(tracker, seq, r)
-    rel = path.relative_to(run.root)
-    if not path.exists():
-        raise ValueError(f"missing result file {rel}")
-    try:
-        boxes = run.read_result(tracker, seq, r)
-    except SequenceError as exc:
-        raise ValueError(str(exc).replace(str(path), str(rel))) from None
+    boxes, rel = _read_boxes(run, tracker, seq, r)
     if len(boxes) != len(gt) and offset and len(gt) == offset + len(boxes):
         gt = gt[offset:]  # the toolkit's files start later (Tiger1 from frame 6)
     if len(boxes) != len(gt):
@@ -193,6 +229,42 @@ def _score_one(run: RunDir, tracker: str, seq: str, r: int, gt: np.ndarray, offs
             f"{rel}: result file {side} than its sequence: {len(boxes)} lines, sequence {seq} has {len(gt)} frames"
         )
     return score_sequence(boxes, gt, invalid=invalid)
+
+
+def _read_boxes(run: RunDir, tracker: str, seq: str, r: int, part=None) -> tuple[np.ndarray, Path]:
+    """The boxes of one result file and its path relative to the run; ValueError naming
+    the file when it is missing or malformed."""
+    rel = run.result_path(tracker, seq, r, part=part).relative_to(run.root)
+    if not (run.root / rel).exists():
+        raise ValueError(f"missing result file {rel}")
+    try:
+        return run.read_result(tracker, seq, r, part=part), rel
+    except SequenceError as exc:
+        raise ValueError(str(exc).replace(str(run.root / rel), str(rel))) from None
+
+
+def _score_segments(run: RunDir, tracker: str, seq: str, r: int, gt: np.ndarray, invalid: str, which):
+    """``(pooled score, parts)`` of ``seq``'s TRE or SRE runs (module notes; ``which``:
+    ``(protocol, dataset layout)``); ValueError naming the first missing or unusable file, or
+    why the protocol has no run there."""
+    protocol, layout = which
+    try:
+        runs = segments(protocol, gt, init_omit(seq, layout))
+    except ValueError as exc:
+        raise ValueError(f"{seq}: no {protocol.upper()} run: {exc}") from None
+    scores, parts = [], []
+    for segment in runs:
+        part = (protocol, segment.name)
+        boxes, rel = _read_boxes(run, tracker, seq, r, part)
+        n = len(gt) - segment.start
+        if len(boxes) != n:
+            side = "shorter" if len(boxes) < n else "longer"
+            raise ValueError(
+                f"{rel}: result file {side} than its run: {len(boxes)} lines, {segment.label} of {seq} has {n} frames"
+            )
+        scores.append(score_sequence(boxes, gt[segment.start :], invalid=invalid))
+        parts.append(part)
+    return pool_scores(scores, invalid), parts
 
 
 def _import_offsets(run: RunDir, tracker: str) -> dict[str, int]:

@@ -17,9 +17,10 @@ import html
 import re
 from dataclasses import dataclass
 
+from .protocols import PROTOCOL_TITLES
 from .scoring import Summary
 
-__all__ = ["markdown_table", "csv_table", "html_table"]
+__all__ = ["markdown_table", "csv_table", "html_table", "protocols_markdown", "protocols_html"]
 
 _DIGITS = 2
 #: first characters that make a spreadsheet read a cell as a formula (OWASP, CSV injection)
@@ -91,7 +92,7 @@ def markdown_table(summary: Summary) -> str:
     """``table.md``: the table, a note on differing sequence counts, and the errors."""
     invalid = summary.settings.get("invalid", "otb")
     lines = [
-        "# Average overlap per sequence (OTB one-pass evaluation)",
+        f"# Average overlap per sequence ({PROTOCOL_TITLES[summary.protocol]})",
         "",
         f"Best of each row in **bold** (compared at the {_DIGITS} decimals shown). `error`: no usable "
         f"result (see below). Invalid ground-truth frames: `{invalid}` rule.",
@@ -119,7 +120,54 @@ def markdown_table(summary: Summary) -> str:
     errs = [(t, s, m) for t, e in summary.trackers.items() for s, m in e["errors"].items()]
     if errs:
         lines += ["## Errors", ""] + [f"- {t} / {s}: {m}" for t, s, m in errs] + [""]
+    if summary.protocols:
+        lines += [protocols_markdown(summary)]
     return "\n".join(lines)
+
+
+def _protocol_rows(summary: Summary) -> tuple[list[str], list[tuple[str, list[str]]]]:
+    """``(header, rows)`` of the AUC and precision of each tracker under each protocol the
+    summary holds (OPE's own entries, then ``summary.protocols``); ``–`` where none."""
+    held = ({"ope": summary.trackers} if summary.trackers else {}) | {
+        p: d["trackers"] for p, d in summary.protocols.items()
+    }
+    header = [f"{p.upper()} {what}" for p in held for what in ("AUC", "precision")]
+    names = list(dict.fromkeys(t for entries in held.values() for t in entries))
+    rows = []
+    for t in names:
+        cells = []
+        for entries in held.values():
+            e = entries.get(t) or {}
+            cells += ["–" if e.get(k) is None else f"{e[k]:.3f}" for k in ("auc", "precision20")]
+        rows.append((t, cells))
+    return header, rows
+
+
+def protocols_markdown(summary: Summary) -> str:
+    """The AUC (success) and precision (20 px) of each tracker under each protocol, Markdown;
+    each protocol's full report is in ``report/<protocol>/``."""
+    header, rows = _protocol_rows(summary)
+    lines = [
+        "## Protocols",
+        "",
+        "AUC of the success plot and precision at 20 px of each protocol the run holds "
+        "(TRE and SRE: their full reports are in `tre/` and `sre/`).",
+        "",
+        "| Tracker | " + " | ".join(header) + " |",
+        "| --- | " + " | ".join("---:" for _ in header) + " |",
+    ]
+    lines += [f"| {_md(t)} | " + " | ".join(cells) + " |" for t, cells in rows]
+    return "\n".join(lines + [""])
+
+
+def protocols_html(summary: Summary) -> str:
+    """:func:`protocols_markdown`'s table as HTML (escaped), each protocol linked to its page."""
+    e = html.escape
+    header, rows = _protocol_rows(summary)
+    out = ["<table>", "<tr><th>Tracker</th>" + "".join(f"<th>{e(h)}</th>" for h in header) + "</tr>"]
+    out += [f"<tr><td>{e(t)}</td>" + "".join(f"<td>{e(c)}</td>" for c in cells) + "</tr>" for t, cells in rows]
+    out.append("</table>")
+    return "\n".join(out)
 
 
 def csv_table(summary: Summary) -> str:
