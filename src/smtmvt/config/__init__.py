@@ -84,7 +84,8 @@ FLAT: dict[str, tuple[str, str]] = {
 }
 #: The fields of the run, not of a stage, and their checks.
 _RUN = {"blas_threads": Whole(1, 1_024, none=True), "seed": Whole(0, none=True)}
-assert len(FLAT) == sum(len(dataclasses.fields(c)) for c in GROUPS.values()) and not set(FLAT) & set(_RUN)
+assert len(FLAT) == sum(len(dataclasses.fields(c)) for c in GROUPS.values())  # unique flat names
+assert not set(FLAT) & {*_RUN, *GROUPS, *dir(object)}
 
 
 @dataclass(frozen=True, init=False)
@@ -192,6 +193,10 @@ class TrackerConfig:
             changes[name][field] = value
         for name, cls in GROUPS.items():
             object.__setattr__(self, name, _group(name, cls, given[name], changes[name]))
+        # The flat names as plain attributes too: the tracker reads them each frame, at a
+        # field's cost (through __getattr__ a read costs ten times as much).
+        for key, (name, field) in FLAT.items():
+            object.__setattr__(self, key, getattr(getattr(self, name), field))
         for key, check in _RUN.items():
             value = blas_threads if key == "blas_threads" else seed
             try:
@@ -210,7 +215,8 @@ class TrackerConfig:
             raise invalid("color_size", size, f"sides of at least color_grid ({grid}) and 2", "experimental.color_size")
 
     def __getattr__(self, name: str) -> Any:
-        """A field's flat name reads the field (``cfg.anchor_weight`` is ``cfg.cues.anchor_weight``)."""
+        """A field's flat name reads the field (``cfg.anchor_weight`` is ``cfg.cues.anchor_weight``;
+        ``__init__`` stores them, this answers where it could not, e.g. ``object.__new__``)."""
         where = FLAT.get(name)
         if where is None:
             raise AttributeError(f"'TrackerConfig' object has no attribute {name!r}{_did_you_mean(name)}")
