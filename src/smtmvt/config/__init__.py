@@ -68,7 +68,7 @@ __all__ = [
 ]
 
 #: The groups, in the tracker's order: ``TrackerConfig``'s field name -> its class.
-GROUPS: dict[str, type] = {
+GROUPS: dict[str, type[Any]] = {  # each a Group
     "motion": MotionConfig,
     "features": FeaturesConfig,
     "coding": CodingConfig,
@@ -252,7 +252,7 @@ class TrackerConfig:
         return cls(**{name: GROUPS[name](**fields) for name, fields in _PAPER.items()}).replace(**changes)
 
 
-def _group(name: str, cls: type, given: Any, changes: dict[str, Any]) -> Any:
+def _group(name: str, cls: type[Any], given: Any, changes: dict[str, Any]) -> Any:
     """Group ``name`` (of class ``cls``) made from ``given`` (None, a dict or a ``cls``) and
     the field ``changes``."""
     if given is None or isinstance(given, Mapping):
@@ -262,7 +262,8 @@ def _group(name: str, cls: type, given: Any, changes: dict[str, Any]) -> Any:
             raise TypeError(f"TrackerConfig: unknown field {unknown[0]!r} of {name} ({cls.__name__})")
         return cls(**fields)
     if isinstance(given, cls):
-        return dataclasses.replace(given, **changes) if changes else given
+        group: Any = given
+        return dataclasses.replace(group, **changes) if changes else group
     raise TypeError(f"TrackerConfig: {name} must be a {cls.__name__} or a dict of its fields, got {given!r}")
 
 

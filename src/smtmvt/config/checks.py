@@ -1,13 +1,13 @@
 """How the configuration's fields are declared: a default, a check and a line of doc each.
 
 A group of :class:`~smtmvt.config.TrackerConfig` (:mod:`smtmvt.config.groups`) is a frozen
-dataclass whose fields are made by :func:`option`::
+dataclass deriving from :class:`Group` whose fields are made by :func:`option`::
 
     weight: float = option(0.5, Real(ge=0), "Weight of the term; 0 turns it off.", flat="correlation_weight")
 
 The check both validates and normalizes the value (a JSON list becomes a tuple, a numpy
-integer an int) and says what it expects; :func:`group` runs the checks after ``__init__`` and
-writes each field's entry (type and range from the check, default, doc) into the class's
+integer an int) and says what it expects; :class:`Group` runs the checks after ``__init__``,
+:func:`group` writes each field's entry (type and range from the check, default, doc) into the class's
 docstring, so the documented range is the one enforced. An error names the field's flat name,
 the bad value, what was expected and the grouped name::
 
@@ -20,13 +20,26 @@ import dataclasses
 import math
 import numbers
 from collections.abc import Callable, Collection
-from typing import Any, TypeVar
+from typing import Any, ClassVar, TypeVar
 
 import numpy as np
 
-__all__ = ["Check", "Choice", "Flag", "Numbers", "Real", "Sizes", "Views", "Whole", "group", "invalid", "option"]
+__all__ = [
+    "Check",
+    "Choice",
+    "Flag",
+    "Group",
+    "Numbers",
+    "Real",
+    "Sizes",
+    "Views",
+    "Whole",
+    "group",
+    "invalid",
+    "option",
+]
 
-_T = TypeVar("_T")
+_G = TypeVar("_G", bound="Group")
 
 
 class CheckError(ValueError):
@@ -235,16 +248,24 @@ def flat_name(field: dataclasses.Field) -> str:
     return field.metadata.get("flat") or field.name
 
 
-def _validate(obj: Any) -> None:
-    """Run each field's check on ``obj`` (a group), storing the normalized value."""
-    for f in dataclasses.fields(obj):
-        value = getattr(obj, f.name)
-        try:
-            normalized = f.metadata["check"](value)
-        except CheckError as exc:
-            raise invalid(flat_name(f), value, exc.expected, f"{obj.GROUP}.{f.name}") from None
-        object.__setattr__(obj, f.name, normalized)
-    obj._check_together()
+class Group:
+    """Base of the groups: runs each field's check after ``__init__``, storing the normalized
+    value, then :meth:`_check_together` (the checks of fields that depend on each other)."""
+
+    GROUP: ClassVar[str] = ""  # its name in TrackerConfig (``cfg.<GROUP>``), set by :func:`group`
+
+    def __post_init__(self) -> None:
+        for f in dataclasses.fields(self):  # type: ignore[arg-type]
+            value = getattr(self, f.name)
+            try:
+                normalized = f.metadata["check"](value)
+            except CheckError as exc:
+                raise invalid(flat_name(f), value, exc.expected, f"{self.GROUP}.{f.name}") from None
+            object.__setattr__(self, f.name, normalized)
+        self._check_together()
+
+    def _check_together(self) -> None:
+        pass
 
 
 def _entry(f: dataclasses.Field) -> str:
@@ -256,17 +277,12 @@ def _entry(f: dataclasses.Field) -> str:
     return f"    {f.name} : {expected}; default {f.default!r}{also}\n        {doc}"
 
 
-def group(name: str) -> Callable[[type[_T]], type[_T]]:
-    """Make a class a group of the configuration named ``name`` (``cfg.<name>``): a frozen
-    dataclass whose fields are checked after ``__init__`` (``_check_together`` then checks
-    those that depend on each other) and listed, with their ranges, in its docstring."""
+def group(name: str) -> Callable[[type[_G]], type[_G]]:
+    """Name a group (a frozen dataclass deriving from :class:`Group`) ``name`` and list its
+    fields, with their ranges and defaults, in its docstring (numpydoc's Attributes)."""
 
-    def decorate(cls: type[_T]) -> type[_T]:
-        cls.GROUP = name  # type: ignore[attr-defined]
-        cls.__post_init__ = _validate  # type: ignore[attr-defined]
-        if not hasattr(cls, "_check_together"):
-            cls._check_together = lambda self: None  # type: ignore[attr-defined]
-        cls = dataclasses.dataclass(frozen=True)(cls)
+    def decorate(cls: type[_G]) -> type[_G]:
+        cls.GROUP = name
         entries = "\n".join(_entry(f) for f in dataclasses.fields(cls))  # type: ignore[arg-type]
         cls.__doc__ = f"{(cls.__doc__ or '').rstrip()}\n\n    Attributes\n    ----------\n{entries}\n"
         return cls

@@ -9,8 +9,10 @@ there. "paper X" is :meth:`TrackerConfig.paper`'s value where it differs from th
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from ..solvers import METHODS, SOLVERS
-from .checks import Choice, Flag, Numbers, Real, Sizes, Views, Whole, group, invalid, option
+from .checks import Choice, Flag, Group, Numbers, Real, Sizes, Views, Whole, group, invalid, option
 
 __all__ = [
     "CodingConfig",
@@ -27,7 +29,8 @@ _GATE = Numbers(2, ge=0)  # a learn gate's (b1, b2): two factors >= 0
 
 
 @group("motion")
-class MotionConfig:
+@dataclass(frozen=True)
+class MotionConfig(Group):
     """The particle filter (:mod:`smtmvt.motion`): how many particles, how they move, and the
     wider search once the target seems lost."""
 
@@ -47,7 +50,8 @@ class MotionConfig:
 
 
 @group("features")
-class FeaturesConfig:
+@dataclass(frozen=True)
+class FeaturesConfig(Group):
     """The views each candidate is seen in (:mod:`smtmvt.features`) and how each frame's planes
     are sampled for them (:mod:`smtmvt.preprocess`)."""
 
@@ -108,7 +112,8 @@ class FeaturesConfig:
 
 
 @group("coding")
-class CodingConfig:
+@dataclass(frozen=True)
+class CodingConfig(Group):
     """The observation model (:mod:`smtmvt.solvers`, :mod:`smtmvt.likelihood`): the candidates
     coded jointly over the templates, and the likelihood ``exp(-alpha * residual)``."""
 
@@ -137,7 +142,8 @@ class CodingConfig:
 
 
 @group("cues")
-class CuesConfig:
+@dataclass(frozen=True)
+class CuesConfig(Group):
     """Terms the likelihood adds to each candidate's coded residual (the correlation term has
     its own group); each weight 0 turns its term off, as in the paper."""
 
@@ -162,7 +168,8 @@ class CuesConfig:
 
 
 @group("correlation")
-class CorrelationConfig:
+@dataclass(frozen=True)
+class CorrelationConfig(Group):
     """The correlation cue (:mod:`smtmvt.correlation`): a filter over gray and gradient-orientation
     cells learned online scores each candidate by its response and places particles at its peak."""
 
@@ -195,7 +202,8 @@ class CorrelationConfig:
 
 
 @group("templates")
-class TemplatesConfig:
+@dataclass(frozen=True)
+class TemplatesConfig(Group):
     """The target templates (:mod:`smtmvt.templates`): how many, and when one is replaced."""
 
     n_templates: int = option(10, Whole(1, 100), "Number of target templates N (paper: 10).")
@@ -236,7 +244,8 @@ class TemplatesConfig:
 
 
 @group("report")
-class ReportConfig:
+@dataclass(frozen=True)
+class ReportConfig(Group):
     """The box reported each frame (the tracking itself is unchanged by these)."""
 
     aspect: float = option(
@@ -251,7 +260,8 @@ class ReportConfig:
 
 
 @group("experimental")
-class ExperimentalConfig:
+@dataclass(frozen=True)
+class ExperimentalConfig(Group):
     """Options measured and not kept: each default turns its option off (the tracker is then
     as without it). Their code stays, for the tests and ``bench/`` scripts that measure them;
     the figures are in the notes cited. Not part of the supported API: they may go."""

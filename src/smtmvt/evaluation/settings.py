@@ -39,8 +39,9 @@ def tracker_settings(tracker, options: dict) -> dict:
     from .trackers import OpenCVTracker
 
     config = getattr(tracker, "config", None)
-    if callable(getattr(config, "to_flat", None)):  # TrackerConfig: its flat form, as before its groups
-        fields = {k: v for k, v in config.to_flat().items() if k != "seed"}
+    to_flat = getattr(config, "to_flat", None)  # TrackerConfig: its flat form, as before its groups
+    if callable(to_flat):
+        fields = {k: v for k, v in to_flat().items() if k != "seed"}
     elif dataclasses.is_dataclass(config) and not isinstance(config, type):
         fields = {k: v for k, v in dataclasses.asdict(config).items() if k != "seed"}
     else:
