@@ -21,7 +21,7 @@ and HOG views only where the bounds need them (``deferred_views``, a speed
 setting), in reporting each box at the first box's aspect ratio
 (``report_aspect``) and with its sides 1.03 times the state's
 (``report_scale``; the tracking itself is unchanged by either) and in not resizing
-frames to 320x240, the best configuration measured.
+frames to 320x240, the best configuration measured (fields named by their flat names).
 
 How each default was chosen, the table of measured changes and the notes
 [1] to [45] that the fields cite (mean average overlap over the 18
@@ -93,6 +93,8 @@ class TrackerConfig:
     """All parameters of :class:`smtmvt.Tracker`, grouped by the stage they set.
 
     ::
+
+        from smtmvt.config import CorrelationConfig, TrackerConfig
 
         cfg = TrackerConfig(seed=0)                                  # the defaults
         cfg = TrackerConfig(correlation=CorrelationConfig(weight=0.25), seed=1)
