@@ -199,10 +199,9 @@ class TrackerConfig:
         # field's cost (through __getattr__ a read costs ten times as much).
         for key, (name, field) in FLAT.items():
             object.__setattr__(self, key, getattr(getattr(self, name), field))
-        for key, check in _RUN.items():
-            value = blas_threads if key == "blas_threads" else seed
+        for key, value in (("blas_threads", blas_threads), ("seed", seed)):
             try:
-                object.__setattr__(self, key, check(value))
+                object.__setattr__(self, key, _RUN[key](value))
             except CheckError as exc:
                 raise invalid(key, value, exc.expected) from None
         self._check_across_groups()
@@ -229,9 +228,9 @@ class TrackerConfig:
         (``cfg.replace(correlation={"weight": 0.25})`` keeps the group's other fields)."""
         kept: dict[str, Any] = {name: getattr(self, name) for name in (*GROUPS, *_RUN)}
         for name, value in changes.items():
-            if name in GROUPS and isinstance(value, Mapping):
-                changes[name] = _group(name, GROUPS[name], kept[name], dict(value))
-        return TrackerConfig(**{**kept, **changes})
+            is_group_dict = name in GROUPS and isinstance(value, Mapping)
+            kept[name] = _group(name, GROUPS[name], kept[name], dict(value)) if is_group_dict else value
+        return type(self)(**kept)
 
     def to_flat(self) -> dict[str, Any]:
         """Every field by its flat name, in the groups' order, then ``blas_threads`` and ``seed``:

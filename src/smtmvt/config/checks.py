@@ -26,6 +26,7 @@ import numpy as np
 
 __all__ = [
     "Check",
+    "CheckError",
     "Choice",
     "Flag",
     "Group",
@@ -34,6 +35,7 @@ __all__ = [
     "Sizes",
     "Views",
     "Whole",
+    "flat_name",
     "group",
     "invalid",
     "option",
