@@ -51,7 +51,7 @@ def list_dataset(root) -> list:
 
 def _select(entries, names, root):
     """Entries matching ``names`` (sequence or folder names, case-insensitive)."""
-    wanted = {}
+    wanted: dict[str, object] = {}
     for n in names:
         wanted.setdefault(str(n).casefold(), n)
     chosen, matched = [], set()

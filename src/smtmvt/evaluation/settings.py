@@ -11,7 +11,8 @@ settings differ), and, per result, what the result started from
      "versions": {"smtmvt": "0.1.0", "opencv": "4.10.0"}}
 
 ``config`` is the tracker's ``config`` attribute when it is a dataclass (our trackers'
-:class:`~smtmvt.config.TrackerConfig`) without its ``seed`` (each pair has its own); an
+:class:`~smtmvt.config.TrackerConfig`, by its flat names: :meth:`~smtmvt.config.TrackerConfig.to_flat`,
+the form of the records made before it had groups) without its ``seed`` (each pair has its own); an
 OpenCV tracker has none (its options and OpenCV's version settle it). Every value is JSON
 (a value JSON cannot hold is kept as its ``repr``), so a record read back from ``run.json``
 compares equal to a new one exactly when the settings are the same.
@@ -38,7 +39,10 @@ def tracker_settings(tracker, options: dict) -> dict:
     from .trackers import OpenCVTracker
 
     config = getattr(tracker, "config", None)
-    if dataclasses.is_dataclass(config) and not isinstance(config, type):
+    to_flat = getattr(config, "to_flat", None)  # TrackerConfig: its flat form, as before its groups
+    if callable(to_flat):
+        fields = {k: v for k, v in to_flat().items() if k != "seed"}
+    elif dataclasses.is_dataclass(config) and not isinstance(config, type):
         fields = {k: v for k, v in dataclasses.asdict(config).items() if k != "seed"}
     else:
         fields = None

@@ -14,7 +14,7 @@ Built-in names
 ``smtmvt``
     Our tracker (:class:`smtmvt.Tracker`) with ``TrackerConfig()`` defaults, fed the RGB/gray
     frame unchanged. Options: ``seed``, ``config`` (a :class:`~smtmvt.config.TrackerConfig`)
-    and any ``TrackerConfig`` field (``n_particles=...``).
+    and any ``TrackerConfig`` field by its flat name (``n_particles=...``, ``correlation_weight=...``).
 ``smtmvt-paper``
     Our tracker as the paper describes it (``TrackerConfig.paper()``); same options.
 ``smtmvt-l1t``, ``smtmvt-mtt``, ``smtmvt-mtmvt-ls``, ``smtmvt-mtmvt-lad``

@@ -15,6 +15,9 @@ parameters differ (``lam``/``gamma``, ``lam``, ``lam_p``/``lam_q``); every one
 also takes ``tol``, ``max_iter`` and ``return_info``.
 """
 
+from collections.abc import Callable
+from typing import Any
+
 from .baselines import solve_l1t, solve_mtmvt_lad, solve_mtmvt_ls, solve_mtt
 from .smtmvt import (
     METHODS,
@@ -32,7 +35,9 @@ from .smtmvt import (
 #: rule over the batch (L1T on the shared engine), so they code every candidate.
 BOUNDED_CODING = frozenset({"smtmvt"})
 
-SOLVERS = {
+#: Model name -> its solver ``(X, D, ..., tol, max_iter, return_info)``; their other
+#: keywords differ, hence ``...``.
+SOLVERS: dict[str, Callable[..., Any]] = {
     "smtmvt": solve_smtmvt,
     "l1t": solve_l1t,
     "mtt": solve_mtt,
