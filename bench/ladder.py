@@ -34,7 +34,6 @@ test: it measures.
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import json
 import os
 import sys
@@ -73,12 +72,8 @@ STEPS: list[tuple[str, tuple[str, ...], str]] = [
 
 def _departures() -> dict:
     """``{field: default value}`` of every field where the default differs from the paper (seed aside)."""
-    paper, default = TrackerConfig.paper(), TrackerConfig()
-    return {
-        f.name: getattr(default, f.name)
-        for f in dataclasses.fields(default)
-        if f.name != "seed" and getattr(paper, f.name) != getattr(default, f.name)
-    }
+    paper, default = TrackerConfig.paper().to_flat(), TrackerConfig().to_flat()
+    return {name: value for name, value in default.items() if name != "seed" and paper[name] != value}
 
 
 def ladder_options() -> list[dict]:
@@ -97,7 +92,7 @@ def ladder_options() -> list[dict]:
         options.update({f: departures[f] for f in fields if f in departures})
         out.append(dict(options))
     last = TrackerConfig.paper(**out[-1])
-    if dataclasses.replace(last, seed=0) != TrackerConfig(seed=0):
+    if last.replace(seed=0) != TrackerConfig(seed=0):
         raise ValueError("the ladder's last step is not the default")
     return out
 
