@@ -186,12 +186,12 @@ def test_crop_refresh_computes_the_whole_plane_every_kth_frame(monkeypatch):
     monkeypatch.setattr(tracker_module, "prepare_crop", spy)
     t = Tracker(TrackerConfig(n_particles=60, seed=3, crop_planes=True, crop_refresh=4))
     t.init(demo.frames[0], demo.groundtruth[0])
-    divisors = [t._tt_divisors]
+    divisors = [t._sampler.tt_divisors]
     for f in demo.frames[1:]:
         n = len(given)
         t.update(f)
         cropped.append(len(given) > n)
-        divisors.append(t._tt_divisors)
+        divisors.append(t._sampler.tt_divisors)
     assert cropped == [i % 4 != 0 for i in range(1, 10)]
     assert all(g == divisors[(i // 4) * 4] for i, g in zip([i for i in range(1, 10) if i % 4], given))
     assert divisors[4] != divisors[0] and divisors[3] == divisors[0]

@@ -80,11 +80,11 @@ def test_a_found_frame_teaches_only_when_the_chosen_box_is_at_the_peak(monkeypat
 
     monkeypatch.setattr(TemplateSet, "update", spy)
     monkeypatch.setattr(Tracker, "_near_peak", lambda *a: near)
-    before = t._filter.model.A.copy()
+    before = t._corr.filter.model.A.copy()
     t.update(frames[5])
-    assert t._redetected
+    assert t._corr.redetected
     assert len(angles) == 1
     if near:
-        assert np.isfinite(angles[0]) and not np.array_equal(t._filter.model.A, before)
+        assert np.isfinite(angles[0]) and not np.array_equal(t._corr.filter.model.A, before)
     else:
-        assert angles[0] == np.inf and np.array_equal(t._filter.model.A, before)
+        assert angles[0] == np.inf and np.array_equal(t._corr.filter.model.A, before)

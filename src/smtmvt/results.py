@@ -11,7 +11,7 @@ from .confidence import Evidence
 from .geometry import affine_to_box, box_scaled, box_with_aspect
 from .likelihood import Observation
 
-__all__ = ["TrackResult", "FrameDetail", "ratio", "reshaped_box"]
+__all__ = ["TrackResult", "FrameDetail", "evidence", "ratio", "reshaped_box"]
 
 
 @dataclass(frozen=True)
@@ -58,6 +58,24 @@ def ratio(value: float, typical: float) -> float:
     if typical > 0:
         return value / typical
     return 1.0 if value <= typical else math.inf
+
+
+def evidence(score: float, judged, costs: list, lost: int, alpha: float) -> Evidence:
+    """A frame's :class:`~smtmvt.confidence.Evidence`: the ``judged`` correlation
+    response's peak and APCE over their means before
+    (:meth:`smtmvt.correlation.CorrelationFilter.judge`; 1 and 1 when None),
+    the chosen candidate's cost ``-log(score) / alpha`` over the median of
+    ``costs``, those chosen before (appended to it here; ``inf`` for ``score``
+    0), and the ``lost`` streak."""
+    peak = apce_ratio = 1.0
+    if judged is not None:
+        now, past = judged
+        peak, apce_ratio = ratio(now[0], past[0]), ratio(now[1], past[1])
+    cost = -math.log(score) / alpha if score > 0 else math.inf
+    cost_ratio = ratio(cost, float(np.median(costs))) if costs else 1.0
+    if math.isfinite(cost):
+        costs.append(cost)
+    return Evidence(peak, apce_ratio, cost_ratio, lost)
 
 
 def reshaped_box(box, reshape: tuple) -> np.ndarray:

@@ -1,19 +1,14 @@
 """The SMTMVT tracker: an orchestrator of the cues, frame after frame.
 
-One frame, one step per module::
+Each frame, one step per module::
 
-    predict  --motion---------> n affine particles: the last frame's resampled and
-                                moved by the random walk (smtmvt.motion), some placed
-                                at the correlation filter's peak (cues.correlation)
-    sample   --sampling-------> the frame's planes (cropped about the particles),
-                                the candidates' patches and views (smtmvt.sampling)
-    score    --cues-----------> p_i = exp(-alpha (r_i + sum_c cost_c(i))): r_i the
-                                sparse cue's residual over the templates (cues.sparse,
-                                the paper's), cost_c each other cue's (smtmvt.cues)
-    choose   -----------------> the best candidate (or the mean), its scale moved
-                                toward the scale filter's (smtmvt.scale)
-    learn    --cues-----------> each cue learns from the choice (the templates, the
-                                background ring, the correlation filter)
+    predict  particles: the last frame's resampled and moved by the random walk
+             (smtmvt.particles), some placed at the correlation peak (cues.correlation)
+    sample   the frame's planes about them, the candidates' patches and views (smtmvt.sampling)
+    score    p_i = exp(-alpha (r_i + sum_c cost_c(i))): r_i the sparse cue's residual over
+             the templates (cues.sparse, the paper's), cost_c each other cue's (smtmvt.cues)
+    choose   the best candidate (or the mean), its scale moved toward the scale filter's
+    learn    each cue learns from the choice (the templates, the background, the filter)
 
 The paper's tracker (``TrackerConfig.paper()``) is the sparse cue alone; the
 default adds the anchor, motion, foreground and correlation cues.
@@ -30,24 +25,27 @@ Usage (like OpenCV's trackers)::
 from __future__ import annotations
 
 import dataclasses
-import math
 import time
 from collections import defaultdict
-from contextlib import contextmanager
+from contextlib import nullcontext
+from functools import partial
+from typing import Any
 
 import numpy as np
 from threadpoolctl import ThreadpoolController
 
-from .confidence import LOST_BELOW, Evidence, confidence
+from .confidence import LOST_BELOW, confidence
 from .config import TrackerConfig
 from .cues import Choice, CorrelationCue, Cue, Scene, SparseCue, Start, make_cues
-from .geometry import affine_scale, affine_to_box, box_inside_fraction, box_to_affine
+from .geometry import affine_scale, affine_to_box, box_inside_fraction, box_to_affine, checked_box
 from .likelihood import Observation
-from .motion import propagate, pull_shape, resample, translation_std
-from .preprocess import PreparedFrame, check_frame
-from .results import FrameDetail, TrackResult, ratio, reshaped_box
+from .particles import ParticleFilter
+from .preprocess import PreparedFrame, check_same_size
+from .results import FrameDetail, TrackResult, reshaped_box
+from .results import evidence as frame_evidence
 from .sampling import Sampler
 from .scale import ScaleFilter
+from .timing import StageTimer
 from .warp import inside_fraction
 
 __all__ = ["Tracker", "TrackResult", "FrameDetail", "track_frames"]
@@ -74,9 +72,7 @@ class Tracker:
         self._cue_weights = dict(cue_weights or {})
         make_cues(self.config, self._cue_weights)  # refuse unknown names now, not at init
         self._initialized = False
-        #: Seconds spent per stage since the last :meth:`init` (for ``bench/``).
-        self.timings: defaultdict[str, float] = defaultdict(float)
-        self._timing: set[str] = set()  # the stages being timed now
+        self._timer = StageTimer()
         self._threadpools = ThreadpoolController() if self.config.blas_threads else None
 
     @property
@@ -86,29 +82,19 @@ class Tracker:
             raise RuntimeError("tracker not initialized")
         return (self._sparse, *self._others)
 
-    @contextmanager
     def _blas_limit(self):
         if self._threadpools is None:
-            yield
-        else:
-            with self._threadpools.limit(limits=self.config.blas_threads, user_api="blas"):
-                yield
+            return nullcontext()
+        return self._threadpools.limit(limits=self.config.blas_threads, user_api="blas")
 
-    @contextmanager
     def _timed(self, stage: str):
-        """Add the block's time to ``timings[stage]``, once: a block of a stage
-        already being timed (a deferred view's features inside observe's) is not
-        counted again."""
-        if stage in self._timing:
-            yield
-            return
-        self._timing.add(stage)
-        t0 = time.perf_counter()
-        try:
-            yield
-        finally:
-            self.timings[stage] += time.perf_counter() - t0
-            self._timing.discard(stage)
+        """A block of ``stage`` timed in :attr:`timings` (:meth:`StageTimer.timed`)."""
+        return self._timer.timed(stage)
+
+    @property
+    def timings(self) -> defaultdict[str, float]:
+        """Seconds spent per stage since the last :meth:`init` (for ``bench/``)."""
+        return self._timer.seconds
 
     # -- public API --------------------------------------------------------
     def init(self, frame: np.ndarray, box) -> None:
@@ -174,12 +160,7 @@ class Tracker:
 
     # -- init ----------------------------------------------------------------
     def _init(self, frame: np.ndarray, box) -> None:
-        b = np.asarray(box, dtype=np.float64).reshape(-1)
-        shown = tuple(b.tolist())  # plain numbers in messages, not np.float64(...)
-        if b.size != 4 or not np.all(np.isfinite(b)):
-            raise ValueError(f"init: box must be 4 finite numbers (x, y, w, h), got {shown}")
-        if b[2] <= 0 or b[3] <= 0:
-            raise ValueError(f"init: box {shown} has zero or negative size")
+        b = checked_box(box, "init")
         cfg = self.config
         self._frame_index = 0
         shape = np.shape(frame)
@@ -199,13 +180,13 @@ class Tracker:
         inside = box_inside_fraction(wb, prepared.shape)
         if inside < 0.25:
             raise ValueError(
-                f"init: box {shown} is mostly outside the {shape[1]}x{shape[0]} image ({inside:.0%} inside)"
+                f"init: box {tuple(b.tolist())} is mostly outside the {shape[1]}x{shape[0]} image ({inside:.0%} inside)"
             )
-        self.timings = defaultdict(float)
+        self._timer = StageTimer()
         self._rng = np.random.default_rng(cfg.seed)
         self._state = box_to_affine(wb)
         self._init_state = self._state.copy()
-        self._start_motion()
+        self._motion = ParticleFilter(cfg, self._state)
         self._work_box = tuple(float(v) for v in wb)
         self._box = tuple(float(v) for v in b)
         # the scale filter (config.scale_filter), on the frame as given
@@ -213,59 +194,19 @@ class Tracker:
         start = Start(frame, b, wb, self._state, prepared, self._sampler, self._rng)
         for cue in cues:
             cue.start(start)
-        sparse = [c for c in cues if isinstance(c, SparseCue)]
-        if len(sparse) != 1:
-            raise ValueError(f"a track needs one sparse cue, got {len(sparse)}")
-        self._sparse, self._others = sparse[0], [c for c in cues if c is not sparse[0]]
+        self._sparse = next(c for c in cues if isinstance(c, SparseCue))  # always on
+        self._others = [c for c in cues if c is not self._sparse]
         self._corr = next((c for c in cues if isinstance(c, CorrelationCue)), None)
-        self._n_first = self._first_views(cues)
-        self._particles = np.repeat(self._state[None], cfg.n_particles, axis=0)
-        self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
+        self._n_first = self._sparse.first_views(cues)
         self._lost = 0  # frames in a row the target seemed lost (config.redetect_after)
         self._costs: list[float] = []  # the chosen candidates' costs (TrackResult.confidence)
         self._initialized = True
 
-    def _start_motion(self) -> None:
-        """The motion model's state at init: no velocity, no search expansion,
-        and which particles take the velocity term and the narrow search."""
-        cfg = self.config
-        self._velocity = np.zeros(2)
-        self._residuals: list[float] = []  # the chosen candidates' residuals (config.search_expand)
-        self._expand = 1.0
-        # velocity_fraction of the particles, evenly spread over the indices, take the velocity term
-        i = np.arange(cfg.n_particles)
-        moved = np.floor((i + 1) * cfg.velocity_fraction) > np.floor(i * cfg.velocity_fraction)
-        self._velocity_share = None if moved.all() else moved.astype(np.float64)[:, None]
-        # the first narrow_fraction of the particles search with narrow_scale times the std
-        self._spread = None
-        if cfg.narrow_fraction > 0:
-            self._spread = np.ones(cfg.n_particles)
-            self._spread[: int(round(cfg.narrow_fraction * cfg.n_particles))] = cfg.narrow_scale
-
-    def _first_views(self, cues) -> int:
-        """How many of ``config.views`` are computed for every candidate; the
-        others (``config.deferred_views``, at the end) only where the bounded
-        coding needs them, unless a cue needs them all (:meth:`Cue.eager_views`)."""
-        cfg = self.config
-        n_first = len(cfg.views)
-        eager = set().union(*(c.eager_views() for c in cues))
-        while n_first > 0 and cfg.views[n_first - 1] in set(cfg.deferred_views) - eager:
-            n_first -= 1
-        return n_first if n_first > 0 and self._sparse.prune_eps(cfg.n_particles) > 0 else len(cfg.views)
-
     # -- the working frame (config.frame_size) and its planes -----------------
     def _prepare(self, frame, where: str, channels, plane_scale: float = 1.0, states=None) -> PreparedFrame:
         """The frame's planes (:meth:`smtmvt.sampling.Sampler.prepare`, about the current state)."""
-        return self._sampler.prepare(
-            frame,
-            where,
-            channels,
-            plane_scale,
-            states,
-            box=self._work_box,
-            state=self._state,
-            frame_index=self._frame_index,
-        )
+        track: dict[str, Any] = {"box": self._work_box, "state": self._state, "frame_index": self._frame_index}
+        return self._sampler.prepare(frame, where, channels, plane_scale, states, **track)
 
     def _views(self, frame: PreparedFrame, params: np.ndarray, plane_scale: float = 1.0) -> list:
         """Candidate views ``[(d_k, m) float32]`` of the states ``params (m, 6)`` (:mod:`smtmvt.sampling`)."""
@@ -286,24 +227,12 @@ class Tracker:
         """0-based boxes of the working frame -> of the input frame."""
         return np.asarray(boxes, dtype=np.float64) / np.tile(self._scale, 2)
 
-    def _check_frame(self, frame) -> None:
-        """Raise ValueError for a frame that cannot be read (shape, dtype, NaN) or whose
-        height and width differ from ``init``'s frame; nothing is changed before."""
-        where = f"frame {self._frame_index + 1}"
-        h, w = check_frame(frame, where).shape[:2]
-        h0, w0 = self._frame_shape
-        if (h, w) != (h0, w0):
-            raise ValueError(
-                f"update: {where} is {w}x{h} pixels but init's frame was {w0}x{h0}: "
-                "every frame must have the first frame's size (call init again for another size)"
-            )
-
     # -- one frame -----------------------------------------------------------
     def _update(self, frame: np.ndarray, probes=None):
         """One frame: predict, sample, score, choose, learn."""
         if not self._initialized:
             raise RuntimeError("update called before init")
-        self._check_frame(frame)
+        check_same_size(frame, f"frame {self._frame_index + 1}", self._frame_shape)
         self._frame_index += 1
         rng_state = self._rng.bit_generator.state
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
@@ -322,17 +251,9 @@ class Tracker:
         result, detail = self._choose(scene, obs, probe_boxes)
         corr = self._corr
         self._lost = self._lost + 1 if corr is not None and corr.seems_lost(scene.judged) else 0
-        evidence = self._evidence(result.score, scene.judged)
+        evidence = frame_evidence(result.score, scene.judged, self._costs, self._lost, self.config.alpha)
         c = confidence(evidence)
         return dataclasses.replace(result, confidence=c, lost=c < LOST_BELOW, evidence=evidence), detail
-
-    def _predicted(self) -> np.ndarray:
-        """This frame's prediction ``(6,)``: the last state, its translation
-        moved by the velocity term."""
-        predicted = self._state.copy()
-        if self.config.velocity:
-            predicted[4:] += self.config.velocity * self._velocity
-        return predicted
 
     def _response(self, frame) -> tuple | None:
         """The correlation filter's response about this frame's prediction,
@@ -341,35 +262,16 @@ class Tracker:
         if self._corr is None:
             return None
         with self._timed("likelihood"):
-            return self._corr.respond(frame, self._from_work(affine_to_box(self._predicted())), self._lost)
+            box = self._from_work(affine_to_box(self._motion.predicted(self._state)))
+            return self._corr.respond(frame, box, self._lost)
 
     def _propagate(self, response=None) -> np.ndarray:
-        """Predict: this frame's ``(n, 6)`` particles, the last frame's resampled
-        by their likelihoods, then moved by the random walk (and the velocity
-        term); with the correlation filter's ``response``, some placed about its
-        peak (:meth:`CorrelationCue.place`). Sets ``_steps`` (each particle's
-        predicted translation and the walk's std there, for the motion cue)."""
-        cfg = self.config
+        """Predict: this frame's ``(n, 6)`` particles (:meth:`ParticleFilter.propagate`),
+        with the correlation filter's ``response`` some placed about its peak
+        (:meth:`CorrelationCue.place`)."""
+        proposal = None if response is None or self._corr is None else partial(self._corr.place, response=response)
         with self._timed("motion"):
-            particles = resample(self._particles, self._weights, cfg.n_particles)
-            if cfg.shape_pull:
-                particles = pull_shape(particles, self._init_state, cfg.shape_pull)
-            shift = cfg.velocity * self._velocity if cfg.velocity else None
-            if shift is not None and self._velocity_share is not None:
-                shift = self._velocity_share * shift
-            std = cfg.affine_std
-            if self._expand > 1.0:  # config.search_expand: a wider search after a poorly explained frame
-                std = (*std[:4], std[4] * self._expand, std[5] * self._expand)
-            moved = propagate(particles, std, self._rng, shift, self._spread, cfg.translation_power, cfg.aspect_std)
-            count = 0
-            if response is not None:
-                assert self._corr is not None
-                moved, count = self._corr.place(moved, response, self._rng)
-            predicted = particles[:, 4:] + (0.0 if shift is None else shift)
-            if count and self._corr is not None and self._corr.redetected:  # the wider search's: no motion term
-                predicted[len(moved) - count :] = moved[len(moved) - count :, 4:]
-            self._steps = (predicted, translation_std(particles, std, cfg.translation_power))
-            return moved
+            return self._motion.propagate(self._rng, proposal)
 
     def _planes(self, frame, particles: np.ndarray, probes: np.ndarray) -> tuple:
         """``(prepared, probe_planes, plane_scale)``: the frame's planes about the
@@ -396,11 +298,12 @@ class Tracker:
             patches = patches.joined(sampler.patches(probe_planes, probes, plane_scale, self._work_box))
         # the views computed for every candidate; the deferred ones as the bounds need them
         X = sampler.extract(patches, self.config.views[: self._n_first])
-        assert self._sparse.templates is not None
+        motion = self._motion
+        assert self._sparse.templates is not None and motion.steps is not None
         return Scene(
             frame, self._frame_index, particles, probes, prepared, probe_planes, plane_scale, self._state,
-            self._work_box, self._predicted(), self._steps, X, sampler, self._sparse.templates, response, judged,
-            patches,
+            self._work_box, motion.predicted(self._state), motion.steps, X, sampler, self._sparse.templates,
+            response, judged, patches, self._rng,
         )  # fmt: skip
 
     def _score(self, scene: Scene) -> Observation:
@@ -421,7 +324,7 @@ class Tracker:
 
     def _choose(self, scene: Scene, obs: Observation, probe_boxes) -> tuple[TrackResult, FrameDetail]:
         """Choose and learn: the best particle (or their mean), its scale moved
-        toward the scale filter's (:meth:`_rescaled`); then every cue learns
+        toward the scale filter's (:meth:`ScaleFilter.rescale`); then every cue learns
         from it (the sparse cue's template update first) and the next frame's
         resampling weights are set."""
         cfg = self.config
@@ -430,8 +333,7 @@ class Tracker:
         reshape = self._reshape()
         if not np.any(p > 0):
             # Nothing explains the frame: keep the previous state (no NaN ever leaves).
-            self._particles = np.repeat(self._state[None], cfg.n_particles, axis=0)
-            self._weights = np.full(cfg.n_particles, 1.0 / cfg.n_particles)
+            self._motion.keep(self._state)
             result = TrackResult(self._box, 0.0, float("inf"), True, None, self._frame_index)
             return result, FrameDetail(particles, obs, None, probe_boxes, self._scale, None, reshape)
         best = int(np.argmax(p))
@@ -440,16 +342,16 @@ class Tracker:
         state = (p / p.sum()) @ particles if cfg.estimate == "mean" else particles[best].copy()
         if self._scaler is not None:
             with self._timed("likelihood"):
-                factor = self._rescaled(scene.frame, state)
+                chosen = self._from_work(reshaped_box(affine_to_box(state), reshape))
+                factor = self._scaler.rescale(scene.frame, chosen, self._box, cfg.scale_filter)
             state[:4] *= factor
             particles = particles.copy()
             particles[:, :4] *= factor
-        self._velocity = np.zeros(2) if corr is not None and corr.redetected else state[4:] - self._state[4:]
-        self._expand = self._search_expand(float(obs.residual[best]))
+        velocity = np.zeros(2) if corr is not None and corr.redetected else state[4:] - self._state[4:]
+        self._motion.chosen(particles, p, velocity, float(obs.residual[best]))
         self._state = state
         self._work_box = tuple(float(v) for v in affine_to_box(self._state))
         self._box = tuple(float(v) for v in self._from_work(reshaped_box(self._work_box, reshape)))
-        self._particles, self._weights = particles, p
         if self._scaler is not None and (corr is None or corr.learns(scene.judged, state, scene.response)):
             with self._timed("likelihood"):
                 self._scaler.update(scene.frame, self._box)
@@ -459,29 +361,10 @@ class Tracker:
                 cue.learn(scene, choice)
         decision = self._sparse.decision
         assert decision is not None
-        result = TrackResult(
-            self._box,
-            float(p[best]),
-            float(obs.residual[best]),
-            decision.occluded,
-            decision.replaced,
-            self._frame_index,
-        )
+        score, residual = float(p[best]), float(obs.residual[best])
+        result = TrackResult(self._box, score, residual, decision.occluded, decision.replaced, self._frame_index)
         best_views = [v.copy() for v in self._sparse.views_of(best)]
         return result, FrameDetail(particles, obs, best, probe_boxes, self._scale, best_views, reshape)
-
-    def _rescaled(self, frame, state: np.ndarray) -> float:
-        """The factor on ``state``'s scale (``(6,)``, working frame) that moves
-        it ``config.scale_filter`` of the way, in log, to the scale filter's
-        estimate (:meth:`smtmvt.scale.ScaleFilter.estimate`) at its centre,
-        judged about the last reported box's size."""
-        assert self._scaler is not None
-        chosen = self._from_work(reshaped_box(affine_to_box(state), self._reshape()))
-        last = np.asarray(self._box, dtype=np.float64)
-        at = np.concatenate([chosen[:2] + (chosen[2:] - last[2:]) / 2.0, last[2:]])  # chosen centre, last size
-        target = np.log(self._scaler.estimate(frame, at)) + 0.5 * np.log(last[2] * last[3])
-        step = self.config.scale_filter * (target - 0.5 * np.log(chosen[2] * chosen[3]))
-        return float(np.exp(step))
 
     def _reshape(self) -> tuple[float, float, float]:
         """``(aspect, fraction, factor)`` of the reported boxes: the first box's
@@ -489,35 +372,6 @@ class Tracker:
         ``config.report_scale`` (:func:`smtmvt.results.reshaped_box`)."""
         first = affine_to_box(self._init_state)
         return float(first[3] / first[2]), float(self.config.report_aspect), float(self.config.report_scale)
-
-    def _search_expand(self, residual: float) -> float:
-        """Factor on the next frame's translation std (``config.search_expand``):
-        the chosen residual over the median of the residuals chosen so far,
-        within ``[1, search_expand]``."""
-        cap = self.config.search_expand
-        if cap <= 1.0:
-            return 1.0
-        self._residuals.append(residual)
-        typical = float(np.median(self._residuals))
-        if not typical > 0:
-            return 1.0
-        return float(np.clip(residual / typical, 1.0, cap))
-
-    def _evidence(self, score: float, judged) -> Evidence:
-        """This frame's :class:`Evidence`: the ``judged`` response's peak and
-        APCE over their means before (1 and 1 when None), the chosen
-        candidate's cost ``-log(score) / alpha`` over the median cost chosen
-        before (recorded here; ``inf`` for ``score`` 0), and the lost streak
-        (``_lost``, updated this frame)."""
-        peak = apce_ratio = 1.0
-        if judged is not None:
-            now, past = judged
-            peak, apce_ratio = ratio(now[0], past[0]), ratio(now[1], past[1])
-        cost = -math.log(score) / self.config.alpha if score > 0 else math.inf
-        cost_ratio = ratio(cost, float(np.median(self._costs))) if self._costs else 1.0
-        if math.isfinite(cost):
-            self._costs.append(cost)
-        return Evidence(peak, apce_ratio, cost_ratio, self._lost)
 
 
 def track_frames(tracker: Tracker, frames, box):

@@ -30,7 +30,6 @@ class BackgroundCue(Cue):
         self.weight = config.background_weight
         #: the ring's term views, weighted (K_terms arrays (d_k, m))
         self.views: list | None = None
-        self.rng: np.random.Generator | None = None  # the tracker's, for the rings
 
     @classmethod
     def from_config(cls, config, weight: float = 0.0) -> BackgroundCue | None:
@@ -47,7 +46,6 @@ class BackgroundCue(Cue):
         return sampler.weighted(views, index=index)
 
     def start(self, start: Start) -> None:
-        self.rng = start.rng
         self.views = self._ring(start.sampler, start.prepared, start.state, start.work_box, start.rng)
 
     def cost(self, scene: Scene) -> np.ndarray | None:
@@ -57,7 +55,7 @@ class BackgroundCue(Cue):
 
     def learn(self, scene: Scene, choice: Choice) -> None:
         # in the frame the state was just estimated in: an object beside the target now is background next
-        assert self.rng is not None
+        assert scene.rng is not None
         self.views = self._ring(
-            scene.sampler, scene.prepared, choice.state, choice.work_box, self.rng, scene.plane_scale
+            scene.sampler, scene.prepared, choice.state, choice.work_box, scene.rng, scene.plane_scale
         )

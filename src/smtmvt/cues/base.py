@@ -117,6 +117,8 @@ class Scene:
         None without it (:mod:`smtmvt.cues.correlation`).
     judged : that response judged against those before
         (:meth:`smtmvt.correlation.CorrelationFilter.judge`), or None.
+    rng : the tracker's seeded generator (draw from it only in :meth:`Cue.learn`:
+        the order of the draws is part of the boxes).
     """
 
     frame: np.ndarray
@@ -136,6 +138,7 @@ class Scene:
     response: tuple | None = None
     judged: tuple | None = None
     patches: Patches | None = None
+    rng: np.random.Generator | None = None
 
     @functools.cached_property
     def states(self) -> np.ndarray:

@@ -110,20 +110,22 @@ class CorrelationCue(Cue):
         now = (float(best[0].max()), apce(best[0]))
         return best if clears((now, past), cfg.correlation_learn_gate) else None
 
-    def place(self, moved: np.ndarray, response, rng: np.random.Generator) -> tuple[np.ndarray, int]:
-        """``moved`` (n, 6) with its last ``config.correlation_particles`` share
+    def place(self, moved: np.ndarray, rng: np.random.Generator, response) -> tuple[np.ndarray, int, bool]:
+        """A proposal for :meth:`smtmvt.particles.ParticleFilter.propagate`:
+        ``moved`` (n, 6) with its last ``config.correlation_particles`` share
         (where resampling puts copies of the best) placed about the peak of
-        ``response`` (:func:`smtmvt.motion.place`), and how many were placed."""
+        ``response`` (:func:`smtmvt.motion.place`); how many were placed; and
+        whether they have no parent for the motion cue (a wider search's)."""
         count = int(round(self.config.correlation_particles * len(moved)))
         if not count:
-            return moved, 0
+            return moved, 0, self.redetected
         r, window = response
         # about the peak cell's centre (as the centre of a one-pixel box, to map it to the
         # working frame as box centres are), half a cell's standard deviation
         peak = np.array([[*peak_point(r, window), 1.0, 1.0]]) * np.tile(self.scale, 2)
         point = box_to_affine(peak)[0, 4:]
         step = np.asarray(window.step) * self.scale  # frame pixels per window pixel, working frame
-        return place(moved, count, point, 0.5 * CELL * step, rng), count
+        return place(moved, count, point, 0.5 * CELL * step, rng), count, self.redetected
 
     # -- the gates ----------------------------------------------------------------
     def judge(self, response):
@@ -177,15 +179,20 @@ class CorrelationCue(Cue):
         return (not any(gate) or clears(judged, gate)) and (not self.redetected or self.near_peak(state, response))
 
     # -- the cue ------------------------------------------------------------------
+    def costs(self, response, states: np.ndarray) -> np.ndarray:
+        """``weight * (r_max - r_i) / r_ref`` at the centre of each state ``(n, 6)``
+        (working frame) on ``response`` (:meth:`respond`), ``r_ref`` its peak
+        ``r_max`` or with ``config.correlation_usual_peak`` the mean peak before
+        (:attr:`peak_ref`), ``(n,)``."""
+        centres = box_to_affine(self._input_box(states))[:, 4:]
+        r, window = response
+        return self.weight * correlation_cost(r, window, centres, self.peak_ref)
+
     def cost(self, scene: Scene) -> np.ndarray | None:
-        """``weight * (r_max - r_i) / r_ref`` at each candidate's centre, ``r_ref``
-        this frame's peak ``r_max`` or with ``config.correlation_usual_peak``
-        the mean peak before (:attr:`peak_ref`)."""
+        """:meth:`costs` of the scene's candidates; None with the weight 0."""
         if scene.response is None or not self.weight:
             return None
-        centres = box_to_affine(self._input_box(scene.states))[:, 4:]
-        r, window = scene.response
-        return self.weight * correlation_cost(r, window, centres, self.peak_ref)
+        return self.costs(scene.response, scene.states)
 
     def learn(self, scene: Scene, choice: Choice) -> None:
         assert self.filter is not None

@@ -141,6 +141,19 @@ class SparseCue(Cue):
             return 0.0
         return min(self.config.prune_eps, 0.5 / n)
 
+    def first_views(self, cues) -> int:
+        """How many of ``config.views`` are computed for every candidate: all
+        but the deferred ones at the end (``config.deferred_views``), which are
+        computed only where the bounded coding needs them; a view some cue
+        needs for every candidate (:meth:`~smtmvt.cues.Cue.eager_views`) is
+        never deferred, nor any when every candidate is coded."""
+        cfg = self.config
+        n_first = len(cfg.views)
+        eager = set().union(*(c.eager_views() for c in cues))
+        while n_first > 0 and cfg.views[n_first - 1] in set(cfg.deferred_views) - eager:
+            n_first -= 1
+        return n_first if n_first > 0 and self.prune_eps(cfg.n_particles) > 0 else len(cfg.views)
+
     def code(self, X, D):
         """The observation model's solver on candidate views ``X`` (a subset of columns)."""
         cfg = self.config
