@@ -83,7 +83,9 @@ def residuals_under(tracker: Tracker, frame, boxes, dictionaries) -> tuple[np.nd
     is a diagnosis tool, it reads the tracker's internals without changing them).
     """
     prepared = prepare_frame(frame, "frame", tracker._channels)
-    X = tracker._views(prepared, box_to_affine(np.asarray(boxes, dtype=np.float64)).reshape(-1, 6))
+    X = tracker._sampler.views(
+        prepared, box_to_affine(np.asarray(boxes, dtype=np.float64)).reshape(-1, 6), 1.0, tracker._work_box
+    )
     C, _ = tracker._sparse.code(X, dictionaries)
     anchor = np.zeros(len(boxes))
     if tracker.config.anchor_weight:

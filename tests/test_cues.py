@@ -54,8 +54,8 @@ def test_the_default_cues_and_the_papers_sparse_cue_alone():
 
 def test_a_tracker_lists_its_cues_after_init(demo):
     t = Tracker(TrackerConfig.paper(n_particles=20, seed=0))
-    with pytest.raises(RuntimeError):
-        t.cues
+    with pytest.raises(RuntimeError, match="not initialized"):
+        _ = t.cues
     t.init(demo.frames[0], demo.groundtruth[0])
     assert [c.name for c in t.cues] == ["sparse"]
 

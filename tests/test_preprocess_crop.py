@@ -160,7 +160,10 @@ def test_cropped_planes_give_the_whole_frames_views():
     t = Tracker(TrackerConfig(n_particles=50, seed=4, crop_planes=True, crop_refresh=0))
     t.init(demo.frames[0], demo.groundtruth[0])
     states = propagate(np.repeat(t._state[None], 50, axis=0), t.config.affine_std, np.random.default_rng(0))
-    views = [t._views(t._prepare(demo.frames[1], "f", t._channels, 1.0, s), states) for s in (None, states)]
+    views = [
+        t._sampler.views(t._prepare(demo.frames[1], "f", t._channels, 1.0, s), states, 1.0, t._work_box)
+        for s in (None, states)
+    ]
     for name, whole, crop in zip(t.config.views, *views):
         if name == "intensity":
             cos = np.sum(whole * crop, axis=0) / np.linalg.norm(whole, axis=0) / np.linalg.norm(crop, axis=0)
@@ -214,11 +217,11 @@ def test_crop_refreshed_planes_give_the_whole_frames_views():
     t = Tracker(TrackerConfig(n_particles=50, seed=4, crop_planes=True, crop_refresh=5))
     t.init(demo.frames[0], demo.groundtruth[0])
     states = propagate(np.repeat(t._state[None], 50, axis=0), t.config.affine_std, np.random.default_rng(0))
-    whole = t._views(t._prepare(demo.frames[0], "f", t._channels, 1.0, None), states)
+    whole = t._sampler.views(t._prepare(demo.frames[0], "f", t._channels, 1.0, None), states, 1.0, t._work_box)
     t._frame_index = 1  # not a refresh frame: cropped, with frame 0's divisors
     prepared = t._prepare(demo.frames[0], "f", t._channels, 1.0, states)
     assert prepared.full_shape is not None
-    for name, a, b in zip(t.config.views, whole, t._views(prepared, states)):
+    for name, a, b in zip(t.config.views, whole, t._sampler.views(prepared, states, 1.0, t._work_box)):
         np.testing.assert_allclose(a, b, atol=1e-4, err_msg=name)
 
 

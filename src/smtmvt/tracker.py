@@ -208,10 +208,6 @@ class Tracker:
         track: dict[str, Any] = {"box": self._work_box, "state": self._state, "frame_index": self._frame_index}
         return self._sampler.prepare(frame, where, channels, plane_scale, states, **track)
 
-    def _views(self, frame: PreparedFrame, params: np.ndarray, plane_scale: float = 1.0) -> list:
-        """Candidate views ``[(d_k, m) float32]`` of the states ``params (m, 6)`` (:mod:`smtmvt.sampling`)."""
-        return self._sampler.views(frame, params, plane_scale, self._work_box)
-
     def _plane_scale(self) -> float:
         """Plane pixels per working pixel for the next frame (``config.scale_normalize``)."""
         if not self.config.scale_normalize:
@@ -301,9 +297,10 @@ class Tracker:
         motion = self._motion
         assert self._sparse.templates is not None and motion.steps is not None
         return Scene(
-            frame, self._frame_index, particles, probes, prepared, probe_planes, plane_scale, self._state,
-            self._work_box, motion.predicted(self._state), motion.steps, X, sampler, self._sparse.templates,
-            response, judged, patches, self._rng,
+            frame=frame, index=self._frame_index, particles=particles, probes=probes, prepared=prepared,
+            probe_planes=probe_planes, plane_scale=plane_scale, state=self._state, box=self._work_box,
+            predicted=motion.predicted(self._state), steps=motion.steps, views=X, sampler=sampler,
+            templates=self._sparse.templates, response=response, judged=judged, patches=patches, rng=self._rng,
         )  # fmt: skip
 
     def _score(self, scene: Scene) -> Observation:
