@@ -14,8 +14,9 @@ other cue ``c`` the configuration turns on, summed in the registry's order
 * :meth:`Cue.start` (a :class:`Start`): learn what it needs from the first
   frame and box;
 * :meth:`Cue.cost` (a :class:`Scene`): the ``(n + m,)`` float64 cost of the
-  frame's candidates (>= 0 where the bounded coding needs it,
-  :func:`smtmvt.likelihood.observe`), or None for none this frame;
+  frame's candidates, in the residual's units (it multiplies a likelihood by
+  ``exp(-alpha cost)``; known before coding, it enters the bounded coding's
+  bounds, :func:`smtmvt.likelihood.observe`), or None for none this frame;
 * :meth:`Cue.view_cost`: the part of its cost that comes with a view computed
   late (``config.deferred_views``), for a cost that is a sum over the views;
 * :meth:`Cue.learn` (the :class:`Scene` and the :class:`Choice`): update
@@ -38,6 +39,12 @@ given), so registering it changes no tracker that does not ask for it::
 
     register_cue("rightward", lambda config, w: Rightward(w) if w else None)
     tracker = Tracker(config, cue_weights={"rightward": 0.1})
+
+(``tests/test_cues.py`` does that.) A cue of the package is a module of
+:mod:`smtmvt.cues` whose factory reads its weight from the configuration,
+registered in ``smtmvt/cues/__init__.py``: the place of that line is its place
+in the sum (the floats are added in that order; a cue that is off adds nothing,
+so adding one changes no box of a configuration that leaves it off).
 """
 
 from __future__ import annotations
