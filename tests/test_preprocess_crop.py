@@ -176,17 +176,17 @@ def test_crop_refresh_computes_the_whole_plane_every_kth_frame(monkeypatch):
     """``crop_refresh`` k: frames 0, k, 2k, ... are prepared whole, the others
     cropped with the last whole plane's Tan-Triggs divisors; k = 1 is the
     whole-plane tracker, box for box."""
-    import smtmvt.tracker as tracker_module
+    import smtmvt.sampling as sampling_module
 
     demo = make_demo_sequence(n_frames=10)
     cropped, given = [], []
-    real = tracker_module.prepare_crop
+    real = sampling_module.prepare_crop
 
     def spy(*args, **kwargs):
         given.append(kwargs.get("contrast"))
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(tracker_module, "prepare_crop", spy)
+    monkeypatch.setattr(sampling_module, "prepare_crop", spy)
     t = Tracker(TrackerConfig(n_particles=60, seed=3, crop_planes=True, crop_refresh=4))
     t.init(demo.frames[0], demo.groundtruth[0])
     divisors = [t._sampler.tt_divisors]
@@ -198,7 +198,7 @@ def test_crop_refresh_computes_the_whole_plane_every_kth_frame(monkeypatch):
     assert cropped == [i % 4 != 0 for i in range(1, 10)]
     assert all(g == divisors[(i // 4) * 4] for i, g in zip([i for i in range(1, 10) if i % 4], given))
     assert divisors[4] != divisors[0] and divisors[3] == divisors[0]
-    monkeypatch.setattr(tracker_module, "prepare_crop", real)
+    monkeypatch.setattr(sampling_module, "prepare_crop", real)
     boxes = []
     for cfg in (
         TrackerConfig(n_particles=60, seed=3, crop_planes=False),

@@ -64,6 +64,7 @@ def test_config_refuses_a_negative_or_fractional_count(value):
 def test_a_found_frame_teaches_only_when_the_chosen_box_is_at_the_peak(monkeypatch, near):
     # frame 5 is the one the wider search finds (above); where the box chosen there is
     # not within half its size of the peak, neither the filter nor the templates learn
+    from smtmvt.cues import CorrelationCue
     from smtmvt.templates import TemplateSet
 
     frames, box = _jump_sequence(jump=40)
@@ -79,7 +80,7 @@ def test_a_found_frame_teaches_only_when_the_chosen_box_is_at_the_peak(monkeypat
         return real(self, *args, **kwargs)
 
     monkeypatch.setattr(TemplateSet, "update", spy)
-    monkeypatch.setattr(Tracker, "_near_peak", lambda *a: near)
+    monkeypatch.setattr(CorrelationCue, "near_peak", lambda *a: near)
     before = t._corr.filter.model.A.copy()
     t.update(frames[5])
     assert t._corr.redetected

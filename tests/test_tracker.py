@@ -498,14 +498,15 @@ def test_dog_intensity_plane_against_scipy():
     from scipy.ndimage import gaussian_filter
 
     from smtmvt.preprocess import prepare_frame
+    from smtmvt.sampling import Sampler
 
     rng = np.random.default_rng(1)
     frame = cv2.GaussianBlur(rng.random((90, 110)).astype(np.float32), (0, 0), 1.0)
     frame = 0.05 + 0.9 * (frame - frame.min()) / np.ptp(frame)
     prepared = prepare_frame(frame, "test frame", 1)
-    t = Tracker(TrackerConfig(intensity_plane="dog"))
+    sampler = Sampler(TrackerConfig(intensity_plane="dog"), np.ones(2), (0.0, 0.0, 30.0, 30.0), crop=False)
     sigma = 2.5
-    plane = t._sampler.intensity_plane(prepared, sigma, None)
+    plane = sampler.intensity_plane(prepared, sigma, None)
     g = prepared.gray.astype(np.float64) ** 0.2
     ref = gaussian_filter(g, sigma, truncate=4.0) - gaussian_filter(g, 2 * sigma, truncate=4.0)
     inner = (slice(25, -25), slice(25, -25))
