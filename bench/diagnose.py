@@ -83,12 +83,14 @@ def residuals_under(tracker: Tracker, frame, boxes, dictionaries) -> tuple[np.nd
     is a diagnosis tool, it reads the tracker's internals without changing them).
     """
     prepared = prepare_frame(frame, "frame", tracker._channels)
-    X = tracker._views(prepared, box_to_affine(np.asarray(boxes, dtype=np.float64)).reshape(-1, 6))
-    C, _ = tracker._code(X, dictionaries)
+    X = tracker._sampler.views(
+        prepared, box_to_affine(np.asarray(boxes, dtype=np.float64)).reshape(-1, 6), 1.0, tracker._work_box
+    )
+    C, _ = tracker._sparse.code(X, dictionaries)
     anchor = np.zeros(len(boxes))
     if tracker.config.anchor_weight:
-        first = tracker._terms_of([Dk[:, 0] for Dk in dictionaries])
-        anchor = anchor_offsets(tracker._terms_of(X), first, tracker.config.anchor_weight)
+        first = tracker._sampler.terms_of([Dk[:, 0] for Dk in dictionaries])
+        anchor = anchor_offsets(tracker._sampler.terms_of(X), first, tracker.config.anchor_weight)
     return reconstruction_residual(X, dictionaries, C), anchor
 
 
@@ -106,7 +108,7 @@ def diagnose(seq, config: TrackerConfig, max_frames: int | None = None) -> list[
     n = len(seq) if not max_frames else min(max_frames, len(seq))
     tracker = Tracker(config)
     tracker.init(seq[0], seq.first_box)
-    first = [Dk.copy() for Dk in tracker._templates.dictionaries]
+    first = [Dk.copy() for Dk in tracker._sparse.templates.dictionaries]
     rows = []
     for i in range(1, n):
         frame = seq[i]

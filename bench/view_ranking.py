@@ -53,8 +53,8 @@ def rank_views(seq, config: TrackerConfig, frames: range, n: int = 400) -> np.nd
         prepared = t._prepare(seq[f], f"frame {f}", t._channels, plane_scale)
         start = np.repeat(t._state[None], n, axis=0)
         particles = propagate(start, config.affine_std, rng, None, None, config.translation_power)
-        X = t._views(prepared, particles, plane_scale)
-        D = t._templates.dictionaries
+        X = t._sampler.views(prepared, particles, plane_scale, t._work_box)
+        D = t._sparse.templates.dictionaries
         boxes = t._from_work(np.array([affine_to_box(p) for p in particles]))
         iou = overlap_ratio(boxes, np.repeat(gt[None], n, axis=0))
         scores = [nonnegative_residuals([X[k]], [D[k]]) for k in range(len(X))]

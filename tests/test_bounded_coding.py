@@ -224,14 +224,14 @@ def test_deferred_views_choose_the_same_box_from_the_same_particles(demo, deferr
     partial = []
     for frame in demo.frames[1:]:
         eager._rng = copy.deepcopy(lazy._rng)
-        eager._particles, eager._weights = lazy._particles.copy(), lazy._weights.copy()
+        eager._motion.particles, eager._motion.weights = lazy._motion.particles.copy(), lazy._motion.weights.copy()
         ra, da = lazy.update_detailed(frame)
         rb, db = eager.update_detailed(frame)
         assert da.best == db.best and ra.box == rb.box
         assert ra.residual == pytest.approx(rb.residual, rel=1e-9)
         assert ra.score == pytest.approx(rb.score, rel=1e-9)  # the anchor term over every term view
         partial.append(da.observation.complete.mean())
-        eager._templates = copy.deepcopy(lazy._templates)
+        eager._sparse.templates = copy.deepcopy(lazy._sparse.templates)
     assert np.median(partial) < 0.5  # the LBP view was left out for most candidates
 
 
@@ -400,7 +400,7 @@ def test_tracker_keeps_the_range_bases_of_its_current_templates(demo):
     replaced = 0
     for frame in demo.frames[1:40]:
         replaced += t.update(frame).template_replaced is not None
-        if t._bases is not None:
-            for Q, Dk in zip(t._bases, t._templates.dictionaries):
+        if t._sparse.bases is not None:
+            for Q, Dk in zip(t._sparse.bases, t._sparse.templates.dictionaries):
                 np.testing.assert_array_equal(Q, range_basis(Dk))
     assert replaced >= 2

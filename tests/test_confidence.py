@@ -106,7 +106,7 @@ def test_evidence_ratios_are_the_filters_judgement_and_the_cost_median(demo):
     t.init(demo.frames[0], demo.groundtruth[0])
     results = _run(t, demo.frames[1:6])
     assert results[0].evidence == Evidence(1.0, 1.0, 1.0, 0)  # nothing before the first update
-    history = np.array(t._filter.history)  # (peak, APCE) of each update's response
+    history = np.array(t._corr.filter.history)  # (peak, APCE) of each update's response
     costs = [-math.log(r.score) / FAST.alpha for r in results]
     for i in range(1, len(results)):
         e = results[i].evidence

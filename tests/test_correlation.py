@@ -158,7 +158,7 @@ def test_config_checks_the_weight_and_the_paper_has_none():
     for weight, fraction, learned in ((0.0, 0.0, False), (0.0, 0.1, True), (0.5, 0.0, True)):
         t = Tracker(TrackerConfig(correlation_weight=weight, correlation_particles=fraction, seed=0))
         t.init(img, box)
-        assert (t._filter is not None) == learned
+        assert ("correlation" in [c.name for c in t.cues]) == learned
 
 
 @pytest.fixture(scope="module")
@@ -173,17 +173,17 @@ def test_tracker_adds_the_term_in_its_range(demo):
     t.init(frames[0], box)
     plain = Tracker(TrackerConfig(correlation_weight=0.0, correlation_particles=0.0, n_particles=100, seed=0))
     plain.init(frames[0], box)
-    states = t._particles
-    term = t._correlation(t._response(frames[1]), states)
+    states = t._motion.particles
+    term = t._corr.costs(t._response(frames[1]), states)
     assert term.shape == (len(states),) and term.min() >= 0.0 and term.max() <= 0.7 + 1e-12
     # the first frame's box is the window's centre: its own term is near 0 on the first frame
-    assert t._correlation(t._response(frames[0]), t._state[None])[0] < 0.1 * 0.7
+    assert t._corr.costs(t._response(frames[0]), t._state[None])[0] < 0.1 * 0.7
     # the likelihood of every candidate coded by both gains exactly exp(-alpha * term)
     before = Tracker(t.config)  # t as it was before the update
     before.init(frames[0], box)
     (_, da), (_, db) = t.update_detailed(frames[1]), plain.update_detailed(frames[1])
     np.testing.assert_array_equal(da.particles, db.particles)
-    term = before._correlation(before._response(frames[1]), da.particles)
+    term = before._corr.costs(before._response(frames[1]), da.particles)
     both = da.observation.coded & db.observation.coded & (db.observation.likelihood > 1e-250)
     assert both.sum() >= 5 and np.ptp(term[both]) > 0.05
     ratio = np.log(da.observation.likelihood[both] / db.observation.likelihood[both])
@@ -213,16 +213,16 @@ def test_the_tracker_measures_its_term_against_the_mean_peak_before(demo):
     off.init(frames[0], box)
     off.update(frames[1])
     off.update(frames[2])
-    assert off._peak_ref is None  # each frame's own peak
+    assert off._corr.peak_ref is None  # each frame's own peak
     t = Tracker(TrackerConfig(n_particles=100, seed=0, correlation_usual_peak=True))
     t.init(frames[0], box)
     for i in range(1, 6):
         t.update(frames[i])
-        peaks = [peak for peak, _ in t._filter.history]
-        assert t._peak_ref == (None if i == 1 else pytest.approx(np.mean(peaks[:-1])))
+        peaks = [peak for peak, _ in t._corr.filter.history]
+        assert t._corr.peak_ref == (None if i == 1 else pytest.approx(np.mean(peaks[:-1])))
     response = t._response(frames[6])
-    term = t._correlation(response, t._particles)
-    scale = response[0].max() / t._peak_ref
+    term = t._corr.costs(response, t._motion.particles)
+    scale = response[0].max() / t._corr.peak_ref
     np.testing.assert_allclose(
         term, t.config.correlation_weight * scale * (1 - relative_scores(*response, _centres(t)))
     )
@@ -230,7 +230,7 @@ def test_the_tracker_measures_its_term_against_the_mean_peak_before(demo):
 
 def _centres(t):
     """The frame centres of the tracker's particles."""
-    return box_to_affine(t._from_work(affine_to_box(t._particles)))[:, 4:]
+    return box_to_affine(t._from_work(affine_to_box(t._motion.particles)))[:, 4:]
 
 
 def test_points_invert_cells():
@@ -355,8 +355,8 @@ def test_the_filter_learns_only_from_confident_frames(demo):
         out = []
         for f in frames[1:4]:
             t.update(f)
-            out.append(t._filter.model.A.copy())
-        return out, t._filter.history
+            out.append(t._corr.filter.model.A.copy())
+        return out, t._corr.filter.history
 
     always, none_kept = models((0.0, 0.0))  # no gate at all: no response is judged
     assert none_kept == [] and not np.array_equal(always[1], always[2])
@@ -433,12 +433,12 @@ def test_the_tracker_blends_its_filter_at_the_configured_rate(demo, rate):
     frames, box = demo.frames, demo.groundtruth[0]
     t = Tracker(TrackerConfig(n_particles=60, seed=0, correlation_rate=rate))
     t.init(frames[0], box)
-    first = t._filter.model
+    first = t._corr.filter.model
     t.update(frames[1])  # the first frame judged is always confident: the filter learns
     chosen = t._from_work(t._work_box)  # the state's box (t.box is reshaped for the report)
-    new = train(t._filter._features(frames[1], chosen), t._filter._label)
-    np.testing.assert_allclose(t._filter.model.A, (1 - rate) * first.A + rate * new.A, rtol=1e-9, atol=1e-12)
-    np.testing.assert_allclose(t._filter.model.B, (1 - rate) * first.B + rate * new.B, rtol=1e-9)
+    new = train(t._corr.filter._features(frames[1], chosen), t._corr.filter._label)
+    np.testing.assert_allclose(t._corr.filter.model.A, (1 - rate) * first.A + rate * new.A, rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(t._corr.filter.model.B, (1 - rate) * first.B + rate * new.B, rtol=1e-9)
 
 
 @pytest.mark.parametrize("rate", [0.0, -0.1, 1.5])
@@ -469,9 +469,9 @@ def test_the_tracker_mixes_the_first_filter_at_the_configured_share(demo):
     for f in frames[1:4]:
         t.update(f)
     r, _ = t._response(frames[4])
-    predicted = t._from_work(affine_to_box(t._predicted()))
+    predicted = t._from_work(affine_to_box(t._motion.predicted(t._state)))
     fresh, _ = CorrelationFilter(frames[0], np.asarray(box, dtype=np.float64)).response(frames[4], predicted)
-    learned, _ = t._filter.response(frames[4], predicted)
+    learned, _ = t._corr.filter.response(frames[4], predicted)
     np.testing.assert_allclose(r, 0.6 * learned + 0.4 * fresh, rtol=1e-9, atol=1e-12)
 
 

@@ -129,10 +129,11 @@ def test_contrast_on_cropped_planes_equals_the_whole_frames():
     whole, crop = Tracker(cfg), Tracker(cfg.replace(crop_planes=True))
     for t in (whole, crop):
         t.init(frames[0], box)
-    np.testing.assert_array_equal(whole._fg_model, crop._fg_model)  # both from the whole first frame
-    states = whole._particles + rng.normal(0, 1, (40, 6)) * [0.02, 0, 0, 0.02, 10, 10]
-    a = whole._contrast(whole._prepare(frames[1], "f", whole._channels), states, 1.0)
+    fg_whole, fg_crop = (next(c for c in t.cues if c.name == "foreground") for t in (whole, crop))
+    np.testing.assert_array_equal(fg_whole.model, fg_crop.model)  # both from the whole first frame
+    states = whole._motion.particles + rng.normal(0, 1, (40, 6)) * [0.02, 0, 0, 0.02, 10, 10]
+    a = fg_whole.contrast(whole._prepare(frames[1], "f", whole._channels), states, 1.0)
     crop._frame_index = 1  # not a frame of config.crop_refresh's whole planes
     cropped = crop._prepare(frames[1], "f", crop._channels, 1.0, states)
     assert cropped.shape[0] < 480 and cropped.shape[1] < 480  # a crop
-    np.testing.assert_allclose(crop._contrast(cropped, states, 1.0), a, atol=1e-6)
+    np.testing.assert_allclose(fg_crop.contrast(cropped, states, 1.0), a, atol=1e-6)

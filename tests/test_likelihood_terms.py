@@ -199,9 +199,10 @@ def test_term_views_are_weighted_like_the_coding(demo):
     plain, weighted = Tracker(cfg), Tracker(cfg.replace(view_weights=(4.0, 1.0, 1.0, 9.0, 1.0)))
     for t in (plain, weighted):
         t.init(frames[0], gt[0])
-    assert len(weighted._background) == 3  # intensity, color, HOG
+    ring, plain_ring = (next(c for c in t.cues if c.name == "background").views for t in (weighted, plain))
+    assert len(ring) == 3  # intensity, color, HOG
     for k, scale in enumerate((2.0, 1.0, 3.0)):
-        np.testing.assert_allclose(weighted._background[k], scale * plain._background[k], rtol=1e-6)
-    x = [np.ones((Dk.shape[0], 2), np.float32) for Dk in plain._templates.dictionaries]
-    np.testing.assert_allclose(weighted._terms_of(x)[2], 3.0 * x[3])  # HOG, the views' fourth
+        np.testing.assert_allclose(ring[k], scale * plain_ring[k], rtol=1e-6)
+    x = [np.ones((Dk.shape[0], 2), np.float32) for Dk in plain._sparse.templates.dictionaries]
+    np.testing.assert_allclose(weighted._sampler.terms_of(x)[2], 3.0 * x[3])  # HOG, the views' fourth
     assert weighted.update(frames[1]).score > 0

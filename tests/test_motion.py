@@ -212,12 +212,12 @@ def test_a_particles_step_is_its_own_random_draw():
     t = Tracker(TrackerConfig(n_particles=80, seed=2))
     t.init(demo.frames[0], demo.groundtruth[0])
     t.update(demo.frames[1])
-    assert np.abs(t._velocity).max() > 0.1  # the prediction is moved
+    assert np.abs(t._motion.velocity).max() > 0.1  # the prediction is moved
     draws = np.random.Generator(type(t._rng.bit_generator)())
     draws.bit_generator.state = t._rng.bit_generator.state
     moved = t._propagate()
     noise = draws.standard_normal(moved.shape)
-    np.testing.assert_allclose(translation_distance(moved, *t._steps), (noise[:, 4:] ** 2).sum(1), rtol=1e-9)
+    np.testing.assert_allclose(translation_distance(moved, *t._motion.steps), (noise[:, 4:] ** 2).sum(1), rtol=1e-9)
 
 
 def test_place_moves_the_last_states_about_the_point_and_keeps_their_shape():

@@ -160,7 +160,10 @@ def test_cropped_planes_give_the_whole_frames_views():
     t = Tracker(TrackerConfig(n_particles=50, seed=4, crop_planes=True, crop_refresh=0))
     t.init(demo.frames[0], demo.groundtruth[0])
     states = propagate(np.repeat(t._state[None], 50, axis=0), t.config.affine_std, np.random.default_rng(0))
-    views = [t._views(t._prepare(demo.frames[1], "f", t._channels, 1.0, s), states) for s in (None, states)]
+    views = [
+        t._sampler.views(t._prepare(demo.frames[1], "f", t._channels, 1.0, s), states, 1.0, t._work_box)
+        for s in (None, states)
+    ]
     for name, whole, crop in zip(t.config.views, *views):
         if name == "intensity":
             cos = np.sum(whole * crop, axis=0) / np.linalg.norm(whole, axis=0) / np.linalg.norm(crop, axis=0)
@@ -173,29 +176,29 @@ def test_crop_refresh_computes_the_whole_plane_every_kth_frame(monkeypatch):
     """``crop_refresh`` k: frames 0, k, 2k, ... are prepared whole, the others
     cropped with the last whole plane's Tan-Triggs divisors; k = 1 is the
     whole-plane tracker, box for box."""
-    import smtmvt.tracker as tracker_module
+    import smtmvt.sampling as sampling_module
 
     demo = make_demo_sequence(n_frames=10)
     cropped, given = [], []
-    real = tracker_module.prepare_crop
+    real = sampling_module.prepare_crop
 
     def spy(*args, **kwargs):
         given.append(kwargs.get("contrast"))
         return real(*args, **kwargs)
 
-    monkeypatch.setattr(tracker_module, "prepare_crop", spy)
+    monkeypatch.setattr(sampling_module, "prepare_crop", spy)
     t = Tracker(TrackerConfig(n_particles=60, seed=3, crop_planes=True, crop_refresh=4))
     t.init(demo.frames[0], demo.groundtruth[0])
-    divisors = [t._tt_divisors]
+    divisors = [t._sampler.tt_divisors]
     for f in demo.frames[1:]:
         n = len(given)
         t.update(f)
         cropped.append(len(given) > n)
-        divisors.append(t._tt_divisors)
+        divisors.append(t._sampler.tt_divisors)
     assert cropped == [i % 4 != 0 for i in range(1, 10)]
     assert all(g == divisors[(i // 4) * 4] for i, g in zip([i for i in range(1, 10) if i % 4], given))
     assert divisors[4] != divisors[0] and divisors[3] == divisors[0]
-    monkeypatch.setattr(tracker_module, "prepare_crop", real)
+    monkeypatch.setattr(sampling_module, "prepare_crop", real)
     boxes = []
     for cfg in (
         TrackerConfig(n_particles=60, seed=3, crop_planes=False),
@@ -214,11 +217,11 @@ def test_crop_refreshed_planes_give_the_whole_frames_views():
     t = Tracker(TrackerConfig(n_particles=50, seed=4, crop_planes=True, crop_refresh=5))
     t.init(demo.frames[0], demo.groundtruth[0])
     states = propagate(np.repeat(t._state[None], 50, axis=0), t.config.affine_std, np.random.default_rng(0))
-    whole = t._views(t._prepare(demo.frames[0], "f", t._channels, 1.0, None), states)
+    whole = t._sampler.views(t._prepare(demo.frames[0], "f", t._channels, 1.0, None), states, 1.0, t._work_box)
     t._frame_index = 1  # not a refresh frame: cropped, with frame 0's divisors
     prepared = t._prepare(demo.frames[0], "f", t._channels, 1.0, states)
     assert prepared.full_shape is not None
-    for name, a, b in zip(t.config.views, whole, t._views(prepared, states)):
+    for name, a, b in zip(t.config.views, whole, t._sampler.views(prepared, states, 1.0, t._work_box)):
         np.testing.assert_allclose(a, b, atol=1e-4, err_msg=name)
 
 

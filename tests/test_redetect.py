@@ -64,6 +64,7 @@ def test_config_refuses_a_negative_or_fractional_count(value):
 def test_a_found_frame_teaches_only_when_the_chosen_box_is_at_the_peak(monkeypatch, near):
     # frame 5 is the one the wider search finds (above); where the box chosen there is
     # not within half its size of the peak, neither the filter nor the templates learn
+    from smtmvt.cues import CorrelationCue
     from smtmvt.templates import TemplateSet
 
     frames, box = _jump_sequence(jump=40)
@@ -79,12 +80,12 @@ def test_a_found_frame_teaches_only_when_the_chosen_box_is_at_the_peak(monkeypat
         return real(self, *args, **kwargs)
 
     monkeypatch.setattr(TemplateSet, "update", spy)
-    monkeypatch.setattr(Tracker, "_near_peak", lambda *a: near)
-    before = t._filter.model.A.copy()
+    monkeypatch.setattr(CorrelationCue, "near_peak", lambda *a: near)
+    before = t._corr.filter.model.A.copy()
     t.update(frames[5])
-    assert t._redetected
+    assert t._corr.redetected
     assert len(angles) == 1
     if near:
-        assert np.isfinite(angles[0]) and not np.array_equal(t._filter.model.A, before)
+        assert np.isfinite(angles[0]) and not np.array_equal(t._corr.filter.model.A, before)
     else:
-        assert angles[0] == np.inf and np.array_equal(t._filter.model.A, before)
+        assert angles[0] == np.inf and np.array_equal(t._corr.filter.model.A, before)

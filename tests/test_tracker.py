@@ -250,13 +250,13 @@ def test_view_weights_weigh_each_views_residual(demo):
     assert len(w) == len(FAST.views)
     t = Tracker(FAST.replace(view_weights=w))
     t.init(demo.frames[0], demo.groundtruth[0])
-    D = [Dk.copy() for Dk in t._templates.dictionaries]
+    D = [Dk.copy() for Dk in t._sparse.templates.dictionaries]
     result, detail = t.update_detailed(demo.frames[1])
     C = detail.observation.C[:, :, detail.best]
     parts = [wk * float(np.sum((Dk @ C[k] - x) ** 2)) for k, (wk, Dk, x) in enumerate(zip(w, D, detail.best_views))]
     assert result.residual == pytest.approx(sum(parts), rel=1e-5)
     assert parts[0] != pytest.approx(sum(parts) / len(w), rel=0.05)  # the views are not all alike
-    for Dk in t._templates.dictionaries:
+    for Dk in t._sparse.templates.dictionaries:
         np.testing.assert_allclose(np.linalg.norm(Dk, axis=0), 1.0, atol=1e-5)
 
 
@@ -342,7 +342,7 @@ def test_velocity_fraction_moves_that_share_of_the_particles(demo):
     t = Tracker(cfg)
     t.init(demo.frames[0], demo.groundtruth[0])
     state = t._state.copy()
-    t._velocity = np.array([6.0, -2.0])
+    t._motion.velocity = np.array([6.0, -2.0])
     _, detail = t.update_detailed(demo.frames[1])
     moved = detail.particles[:, 4:] - state[4:]
     np.testing.assert_allclose(moved[1::2], np.tile([6.0, -2.0], (5, 1)))
@@ -359,11 +359,11 @@ def test_color_size_samples_the_color_view_at_its_own_size(demo):
     np.testing.assert_array_equal(plain, _track(frames, box, FAST.replace(color_size=(32, 32))))
     t = Tracker(FAST.replace(color_size=(16, 12)))
     t.init(frames[0], box)
-    patches = t._patches(t._prepare(frames[1], "frame", t._channels), t._particles[:5])
+    patches = t._sampler.patches(t._prepare(frames[1], "frame", t._channels), t._motion.particles[:5], 1.0, t._work_box)
     assert patches.color.shape == (5, 16, 12, 3) and patches.raw.shape == (5, 32, 32)
     ref = Tracker(FAST)
     ref.init(frames[0], box)
-    d16, d32 = t._templates.dictionaries[1], ref._templates.dictionaries[1]  # the color view
+    d16, d32 = t._sparse.templates.dictionaries[1], ref._sparse.templates.dictionaries[1]  # the color view
     assert d16.shape == d32.shape and not np.allclose(d16, d32, atol=1e-3)
     with pytest.raises(ValueError, match="color_size"):
         TrackerConfig(color_size=(1, 16))
@@ -372,12 +372,12 @@ def test_color_size_samples_the_color_view_at_its_own_size(demo):
 def test_search_expand_follows_the_residual_over_its_median(demo):
     t = Tracker(FAST.replace(search_expand=3.0))
     t.init(demo.frames[0], demo.groundtruth[0])
-    factors = [t._search_expand(r) for r in (1.0, 1.0, 1.0, 2.5, 5.0, 0.5)]
+    factors = [t._motion.search_expand(r) for r in (1.0, 1.0, 1.0, 2.5, 5.0, 0.5)]
     # medians 1, 1, 1, 1, 1, 1: the factor is the residual's ratio to them, within [1, 3]
     assert factors == [1.0, 1.0, 1.0, 2.5, 3.0, 1.0]
     off = Tracker(FAST)
     off.init(demo.frames[0], demo.groundtruth[0])
-    assert off._search_expand(10.0) == 1.0
+    assert off._motion.search_expand(10.0) == 1.0
     with pytest.raises(ValueError, match="search_expand"):
         TrackerConfig(search_expand=0.5)
 
@@ -389,7 +389,7 @@ def test_search_expand_widens_the_translation_of_the_next_frames_particles(demo)
     for k in (1.0, 2.0, 3.0):
         t = Tracker(FAST.replace(search_expand=3.0))
         t.init(demo.frames[0], demo.groundtruth[0])
-        t._expand = k
+        t._motion.expand = k
         particles.append(t.update_detailed(demo.frames[1])[1].particles)
     p1, p2, p3 = particles
     np.testing.assert_allclose(p3[:, 4:] - p2[:, 4:], p2[:, 4:] - p1[:, 4:], atol=1e-9)
@@ -404,6 +404,7 @@ def test_color_and_gray_patches_sampled_together_equal_each_sampled_alone(gray_f
     the patches of smoothing and sampling each plane alone."""
     from smtmvt.motion import propagate
     from smtmvt.preprocess import sample_window, smooth
+    from smtmvt.sampling import plane_extent
     from smtmvt.warp import remap_patches, sampling_grid
 
     demo = make_demo_sequence(n_frames=2)
@@ -414,10 +415,10 @@ def test_color_and_gray_patches_sampled_together_equal_each_sampled_alone(gray_f
     t._frame_index = 1  # not a frame of config.crop_refresh's whole planes
     prepared = t._prepare(frames[1], "f", t._channels, 1.0, states)
     assert prepared.color.shape[2] == (1 if gray_frames else 3) and prepared.full_shape is not None
-    patches = t._patches(prepared, states)
-    _, sigma, _ = t._smoothing(1.0)
+    patches = t._sampler.patches(prepared, states, 1.0, t._work_box)
+    _, sigma, _ = t._sampler.smoothing(1.0, t._work_box)
     assert sigma > 1  # the anti-aliasing blur is on
-    x0, y0, x1, y1 = t._plane_extent(states, 1.0)
+    x0, y0, x1, y1 = plane_extent(states, 1.0)
     ox, oy = prepared.origin
     win = sample_window((x0 - ox, y0 - oy, x1 - ox, y1 - oy), prepared.shape)
     X, Y = sampling_grid(states, t.config.feature_size, 1.0, prepared.origin)
@@ -432,8 +433,8 @@ def test_intensity_factor_sets_the_intensity_template_size():
         t = Tracker(TrackerConfig(n_particles=30, seed=0, intensity_factor=factor))
         t.init(demo.frames[0], demo.groundtruth[0])
         t.update(demo.frames[1])
-        sizes.append(t._intensity_size)
-        assert t._templates.dictionaries[0].shape[0] == sizes[-1][0] * sizes[-1][1]
+        sizes.append(t._sampler.intensity_size)
+        assert t._sparse.templates.dictionaries[0].shape[0] == sizes[-1][0] * sizes[-1][1]
     w, h = demo.groundtruth[0][2:]
     assert sizes[1] == (int(np.floor(h / 2 + 0.5)), int(np.floor(w / 2 + 0.5))) and sizes[0] != sizes[1]
     with pytest.raises(ValueError, match="intensity_factor"):
@@ -467,7 +468,7 @@ def test_stage_timings_are_disjoint(demo):
 def _first_intensity_template(frame, box, plane):
     t = Tracker(TrackerConfig(n_particles=10, n_templates=1, seed=0, intensity_plane=plane))
     t.init(frame, box)
-    return t._templates.dictionaries[t._intensity_index][:, 0]
+    return t._sparse.templates.dictionaries[t._sparse.intensity_index][:, 0]
 
 
 def test_intensity_planes_keep_what_each_is_invariant_to():
@@ -497,14 +498,15 @@ def test_dog_intensity_plane_against_scipy():
     from scipy.ndimage import gaussian_filter
 
     from smtmvt.preprocess import prepare_frame
+    from smtmvt.sampling import Sampler
 
     rng = np.random.default_rng(1)
     frame = cv2.GaussianBlur(rng.random((90, 110)).astype(np.float32), (0, 0), 1.0)
     frame = 0.05 + 0.9 * (frame - frame.min()) / np.ptp(frame)
     prepared = prepare_frame(frame, "test frame", 1)
-    t = Tracker(TrackerConfig(intensity_plane="dog"))
+    sampler = Sampler(TrackerConfig(intensity_plane="dog"), np.ones(2), (0.0, 0.0, 30.0, 30.0), crop=False)
     sigma = 2.5
-    plane = t._intensity_plane(prepared, sigma, None)
+    plane = sampler.intensity_plane(prepared, sigma, None)
     g = prepared.gray.astype(np.float64) ** 0.2
     ref = gaussian_filter(g, sigma, truncate=4.0) - gaussian_filter(g, 2 * sigma, truncate=4.0)
     inner = (slice(25, -25), slice(25, -25))

@@ -36,6 +36,7 @@ __all__ = [
     "box_inside_fraction",
     "box_with_aspect",
     "box_scaled",
+    "checked_box",
 ]
 
 #: Size of the template reference frame, in template units.
@@ -187,4 +188,16 @@ def box_scaled(box, factor: float) -> np.ndarray:
     b = np.array(box, dtype=np.float64)
     b[..., :2] += b[..., 2:] * (1.0 - factor) / 2.0
     b[..., 2:] *= factor
+    return b
+
+
+def checked_box(box, where: str) -> np.ndarray:
+    """``box`` as a (4,) float64 ``(x, y, w, h)``; ValueError naming ``where``
+    unless it is 4 finite numbers with a positive width and height."""
+    b = np.asarray(box, dtype=np.float64).reshape(-1)
+    shown = tuple(b.tolist())  # plain numbers in messages, not np.float64(...)
+    if b.size != 4 or not np.all(np.isfinite(b)):
+        raise ValueError(f"{where}: box must be 4 finite numbers (x, y, w, h), got {shown}")
+    if b[2] <= 0 or b[3] <= 0:
+        raise ValueError(f"{where}: box {shown} has zero or negative size")
     return b

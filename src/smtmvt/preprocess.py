@@ -22,6 +22,7 @@ from .features.tan_triggs import TAN_TRIGGS_REACH, tan_triggs_scales
 __all__ = [
     "PreparedFrame",
     "check_frame",
+    "check_same_size",
     "plane_window",
     "prepare_crop",
     "prepare_frame",
@@ -133,6 +134,18 @@ def check_frame(frame, where: str) -> np.ndarray:
     a = _checked_image(frame, where)
     _check_values(a, where)
     return a
+
+
+def check_same_size(frame, where: str, shape) -> None:
+    """:func:`check_frame`, and ValueError when ``frame``'s height and width are
+    not ``shape`` ``(H, W)``, the first frame's (boxes refer to one pixel grid)."""
+    h, w = check_frame(frame, where).shape[:2]
+    h0, w0 = shape
+    if (h, w) != (h0, w0):
+        raise ValueError(
+            f"update: {where} is {w}x{h} pixels but init's frame was {w0}x{h0}: "
+            "every frame must have the first frame's size (call init again for another size)"
+        )
 
 
 def _check_values(a: np.ndarray, where: str) -> None:

@@ -153,6 +153,18 @@ class ScaleFilter:
                 shift = float(np.clip(0.5 * (r[i - 1] - r[i + 1]) / den, -0.5, 0.5))
         return float(self.scales[i] * np.exp(shift * log_step))
 
+    def rescale(self, frame: np.ndarray, chosen, last, fraction: float) -> float:
+        """The factor on the ``chosen`` box's sides (``(4,)``, frame pixels)
+        that moves its size ``sqrt(w h)`` ``fraction`` of the way, in log, to
+        :meth:`estimate`'s at its centre, judged about the ``last`` box's size
+        (``(4,)``, the box of the frame before)."""
+        chosen = np.asarray(chosen, dtype=np.float64)
+        last = np.asarray(last, dtype=np.float64)
+        at = np.concatenate([chosen[:2] + (chosen[2:] - last[2:]) / 2.0, last[2:]])  # chosen centre, last size
+        target = np.log(self.estimate(frame, at)) + 0.5 * np.log(last[2] * last[3])
+        step = fraction * (target - 0.5 * np.log(chosen[2] * chosen[3]))
+        return float(np.exp(step))
+
     def update(self, frame: np.ndarray, box, rate: float = LEARNING_RATE) -> None:
         """Blend in the filter trained on ``box`` in ``frame`` at ``rate``."""
         new = self._train(frame, box)
