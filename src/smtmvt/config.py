@@ -186,8 +186,8 @@ class TrackerConfig:
         #f-correlation_first).
     correlation_usual_peak : bool
         Measure the correlation term against the responses' mean peak before,
-        ``weight * (r_max - r_i) / r_ref``, instead of this frame's own peak; default False
-        (measured better on both halves of docs/split.md, not yet the default: docs/experiments.md#n47).
+        ``weight * (r_max - r_i) / r_ref``, instead of this frame's own peak; default True
+        (measured better on both halves of docs/split.md: docs/experiments.md#n47), False the term before.
     redetect_after : int >= 0
         Weak-peak frames before a wider search; default 10, 0 off (docs/experiments.md#n40, #f-redetect_after).
     motion_weight : float >= 0
@@ -297,7 +297,7 @@ class TrackerConfig:
     template_learn_floor: float = 0.4
     correlation_rate: float = 0.02
     correlation_first: float = 0.0
-    correlation_usual_peak: bool = False
+    correlation_usual_peak: bool = True
     redetect_after: int = 10
     motion_weight: float = 1.0
     scale_push: float = 0.0
