@@ -18,12 +18,17 @@ mean gray level and ``ORIENTATIONS`` unsigned gradient-orientation energies
 (square roots of the cell's gradient magnitudes per orientation bin), all
 times a Hann window.
 
-The tracker adds ``weight * (1 - r_i / r_max)`` to each candidate's residual
-(``TrackerConfig.correlation_weight``), ``r_i`` the response at its centre
-clipped to ``[0, r_max]`` and ``r_max`` the response's peak over the window:
-0 on the peak, ``weight`` where the filter sees nothing of the target. It is
-known before coding, so bounded coding stays exact
-(:func:`smtmvt.likelihood.observe`'s ``offset``).
+The tracker adds ``weight * (r_max - r_i) / r_ref`` to each candidate's
+residual (``TrackerConfig.correlation_weight``; :func:`correlation_cost`),
+``r_i`` the response at its centre clipped to ``[0, r_max]``, ``r_max`` the
+response's peak over the window and ``r_ref`` the mean peak of the filter's
+responses before (``TrackerConfig.correlation_usual_peak``, the default;
+``r_max`` on the first frame): 0 on the peak, ``weight * r_max / r_ref``
+where the filter sees nothing of the target, so that a response weaker than
+usual decides less (docs/experiments.md#n47). With the option off ``r_ref``
+is ``r_max``, the term ``weight * (1 - r_i / r_max)``. It is known before
+coding, so bounded coding stays exact (:func:`smtmvt.likelihood.observe`'s
+``offset``).
 
 The tracker also places a fraction of each frame's particles about the
 response's peak (:func:`peak_point`; ``TrackerConfig.correlation_particles``),

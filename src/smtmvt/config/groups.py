@@ -193,10 +193,10 @@ class CorrelationConfig(Group):
         0.02, Real(gt=0, le=1), "The filter's learning rate (docs/experiments.md#n35).", flat="correlation_rate"
     )
     usual_peak: bool = option(
-        False,
+        True,
         Flag(),
-        "Measure the term against the responses' mean peak before, not this frame's: measured\n"
-        "better on both halves of docs/split.md, not yet the default (docs/experiments.md#n47).",
+        "Measure the term against the responses' mean peak before, not this frame's (False):\n"
+        "measured better on both halves of docs/split.md (docs/experiments.md#n47).",
         flat="correlation_usual_peak",
     )
 
