@@ -29,12 +29,18 @@ __all__ = ["DemoSequence", "make_demo_sequence"]
 
 @dataclass(frozen=True)
 class DemoSequence:
-    """Frames ``(n, H, W, 3) uint8`` RGB and ground truth ``(n, 4)`` 0-based boxes."""
+    """Frames ``(n, H, W, 3) uint8`` RGB and ground truth ``(n, 4)`` 0-based boxes.
+
+    ``events``: each event's first and last frame (0-based). ``occluded_share``:
+    ``(n,)`` the share of each frame's ground-truth box that the occluder covers, in
+    [0, 1] (0 outside the occlusion).
+    """
 
     frames: np.ndarray
     groundtruth: np.ndarray
     events: dict
     name: str = "demo"
+    occluded_share: np.ndarray | None = None
 
     def __len__(self) -> int:
         return len(self.frames)
@@ -86,6 +92,7 @@ def make_demo_sequence(n_frames: int = 120, size=(240, 320), seed: int = 0) -> D
 
     frames = np.empty((T, H, W, 3), np.uint8)
     gt = np.empty((T, 4))
+    occluded = np.zeros(T)
     yy, xx = np.mgrid[0:H, 0:W]
     for i in range(T):
         # Background: a slowly panning crop with a little camera shake.
@@ -110,12 +117,8 @@ def make_demo_sequence(n_frames: int = 120, size=(240, 320), seed: int = 0) -> D
         if ev["occlusion"][0] <= f[i] <= ev["occlusion"][1]:
             k = (f[i] - ev["occlusion"][0]) / (ev["occlusion"][1] - ev["occlusion"][0])
             left = cx[i] - tw * scale[i] * 0.5
-            ox0 = int(round(left - 30 + 0.45 * tw * scale[i] * np.sin(np.pi * k)))
-            oy0 = int(round(cy[i] - 30))
-            xs, ys = max(ox0, 0), max(oy0, 0)
-            xe, ye = min(ox0 + 30, W), min(oy0 + 60, H)
-            if xe > xs and ye > ys:
-                img[ys:ye, xs:xe] = occluder[ys - oy0 : ye - oy0, xs - ox0 : xe - ox0]
+            corner = (int(round(left - 30 + 0.45 * tw * scale[i] * np.sin(np.pi * k))), int(round(cy[i] - 30)))
+            occluded[i] = _paste_occluder(img, occluder, corner, gt[i])
 
         # Illumination: global gain and a soft shadow sweeping across.
         shadow = 1.0 - 0.35 * np.exp(-(((xx - W * f[i] * 1.2) / (0.25 * W)) ** 2))
@@ -128,4 +131,25 @@ def make_demo_sequence(n_frames: int = 120, size=(240, 320), seed: int = 0) -> D
             img = cv2.filter2D(img, -1, kernel, borderType=cv2.BORDER_REFLECT)
         frames[i] = np.clip(img, 0, 255).astype(np.uint8)
     events = {k: (int(round(a * (T - 1))), int(round(b * (T - 1)))) for k, (a, b) in ev.items()}
-    return DemoSequence(frames=frames, groundtruth=gt, events=events)
+    return DemoSequence(frames=frames, groundtruth=gt, events=events, occluded_share=occluded)
+
+
+def _paste_occluder(img: np.ndarray, occluder: np.ndarray, corner: tuple[int, int], box) -> float:
+    """Paste ``occluder`` ``(h, w, 3)`` into ``img`` ``(H, W, 3)`` with its top-left pixel at
+    ``corner`` ``(x, y)`` (clipped to the image); the share of the 0-based ``box`` it covers."""
+    H, W = img.shape[:2]
+    oh, ow = occluder.shape[:2]
+    ox0, oy0 = corner
+    xs, ys = max(ox0, 0), max(oy0, 0)
+    xe, ye = min(ox0 + ow, W), min(oy0 + oh, H)
+    if not (xe > xs and ye > ys):
+        return 0.0
+    img[ys:ye, xs:xe] = occluder[ys - oy0 : ye - oy0, xs - ox0 : xe - ox0]
+    return _covered_share(np.asarray(box) - (0.5, 0.5, 0, 0), (xs - 0.5, ys - 0.5, xe - xs, ye - ys))
+
+
+def _covered_share(box, cover) -> float:
+    """The share of ``box``'s area inside ``cover``; both ``(x, y, w, h)`` in pixel edges."""
+    w = min(box[0] + box[2], cover[0] + cover[2]) - max(box[0], cover[0])
+    h = min(box[1] + box[3], cover[1] + cover[3]) - max(box[1], cover[1])
+    return float(max(w, 0.0) * max(h, 0.0) / (box[2] * box[3]))
