@@ -17,6 +17,9 @@ than a quarter count for neither):
 * L1-APG's own test on the same ``e`` (``L1TrackingBPR_APGup.m``): the map of
   its non-zero entries at the intensity template's shape, closed with the
   3x3 cross, its largest 8-connected blob at least a quarter of the template;
+* the correlation response's test (the default's gate on the template update,
+  ``template_learn_gate``): the frame's ``TrackResult.evidence`` fails it when
+  its peak or its APCE is below the gate's factor times its mean before;
 * the mean share of non-zero entries of ``e`` in occluded and in untouched
   frames (how much occlusion signal ``e`` carries at all).
 
@@ -62,16 +65,19 @@ def config_of(name: str, seed: int) -> TrackerConfig:
     return TrackerConfig.paper(seed=seed) if name == "paper" else TrackerConfig(seed=seed)
 
 
-def track_outliers(tracker: Tracker, frames, box) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def track_outliers(tracker: Tracker, frames, box) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Track ``frames`` from ``box``: per frame after the first, ``occluded`` (bool), the
     share of non-zero intensity outliers and L1-APG's blob share of the best candidate
-    (NaN where no candidate was chosen)."""
+    (NaN where no candidate was chosen), and whether the response fails the template
+    gate (:func:`fails_gate`)."""
     tracker.init(frames[0], box)
     k = tracker.config.views.index("intensity")
-    flags, shares, blobs = [], [], []
+    gate = tracker.config.template_learn_gate
+    flags, shares, blobs, failed = [], [], [], []
     for i in range(1, len(frames)):
         result, detail = tracker.update_detailed(frames[i])
         flags.append(result.occluded)
+        failed.append(fails_gate(result.evidence, gate))
         if detail.best is None:
             shares.append(np.nan)
             blobs.append(np.nan)
@@ -79,7 +85,15 @@ def track_outliers(tracker: Tracker, frames, box) -> tuple[np.ndarray, np.ndarra
         e = detail.observation.E[k][:, detail.best]
         shares.append(float(np.mean(np.abs(e) > 0)))
         blobs.append(largest_closed_blob(e, tracker._sampler.intensity_size))
-    return np.array(flags), np.array(shares), np.array(blobs)
+    return np.array(flags), np.array(shares), np.array(blobs), np.array(failed)
+
+
+def fails_gate(evidence, gate: tuple[float, float]) -> bool:
+    """Whether the frame's response peak or APCE (``evidence``, ratios to their means
+    before) is below the gate's factors ``(b1, b2)``; False without a response or gate."""
+    if evidence is None or not any(gate):
+        return False
+    return bool(evidence.peak_ratio < gate[0] or evidence.apce_ratio < gate[1])
 
 
 def recall_precision(flags: np.ndarray, occluded: np.ndarray, untouched: np.ndarray) -> str:
@@ -97,11 +111,12 @@ def demo(args) -> None:
     runs = [
         track_outliers(Tracker(config_of(args.config, s)), seq.frames, seq.groundtruth[0]) for s in range(args.seeds)
     ]
-    flags, shares, blobs = (np.concatenate(parts) for parts in zip(*runs))
+    flags, shares, blobs, failed = (np.concatenate(parts) for parts in zip(*runs))
     occ, free = np.tile(occluded, args.seeds), np.tile(untouched, args.seeds)
     print(f"demo, {args.config}, {args.seeds} seeds: {occ.sum()} occluded frames, {free.sum()} untouched")
     print(f"  TrackResult.occluded:        {recall_precision(flags, occ, free)}")
     print(f"  L1-APG blob >= a quarter:    {recall_precision(blobs >= QUARTER, occ, free)}")
+    print(f"  response fails the gate:     {recall_precision(failed, occ, free)}")
     print(
         f"  non-zero share of e:         occluded {np.nanmean(shares[occ]):.3f}, untouched {np.nanmean(shares[free]):.3f}"
     )
@@ -117,7 +132,7 @@ def dataset(args) -> None:
     groups: dict[str, list[float]] = {"OCC": [], "not OCC": [], "untagged": []}
     for folder in sorted(p for p in Path(args.data).iterdir() if (p / "groundtruth_rect.txt").is_file()):
         seq = open_sequence(folder)
-        flags, shares, _ = track_outliers(Tracker(config_of(args.config, args.seed)), seq, seq.first_box)
+        flags, shares, _, _ = track_outliers(Tracker(config_of(args.config, args.seed)), seq, seq.first_box)
         rate = float(np.mean(flags))
         try:
             tags = None if table is None else attributes_of(table, seq.name)
