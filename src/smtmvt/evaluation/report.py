@@ -49,13 +49,13 @@ from .page import index_html
 from .paper_table import paper_table_files
 from .plots import Curve, render_curves, select_curves
 from .published import ATTRIBUTE_NAMES, benchmark_label, load_attribute_table, load_published_scores
-from .rundir import RunDir, RunInfo
+from .rundir import REPORT, REPORT_PAGE, REPORT_SUMMARY, REPORT_TABLE, REPORT_TABLE_CSV, RunDir, RunInfo
 from .scoring import PROTOCOL_NOTES, Summary, score_run
 from .tables import csv_table, markdown_table
 
 __all__ = ["build_report", "load_groundtruth_source", "REPORT_DIR"]
 
-REPORT_DIR = "report"
+REPORT_DIR = REPORT  # kept for callers of this module; the name is RunDir's
 
 
 def build_report(
@@ -248,7 +248,7 @@ def _top_summary(run: RunDir, scored: dict[str, Summary], errors: list, settings
     (or an empty one), with the others' summaries in ``protocols`` and every error, once."""
     for protocol, other in scored.items():
         if protocol != "ope":
-            _write(run, other, {}, top, formats, {}, run.report_dir / protocol)
+            _write(run, other, {}, top, formats, {}, run.protocol_report_dir(protocol))
     summary = scored.get("ope") or _empty_summary(settings)
     summary.errors[:0] = errors
     summary.protocols = {p: _finite(asdict(other)) for p, other in scored.items() if p != "ope"}
@@ -276,20 +276,20 @@ def _empty_summary(settings: dict) -> Summary:
 
 def _write_index(run: RunDir, summary: Summary) -> None:
     """``index.html`` (links to the protocols' pages) and ``summary.json`` of a run without OPE."""
-    summary.files = ["index.html", "summary.json"]
-    run.write_text(run.report_dir / "index.html", index_html(summary))
-    run.write_text(run.report_dir / "summary.json", json.dumps(_finite(asdict(summary)), indent=1, allow_nan=False))
+    summary.files = [REPORT_PAGE, REPORT_SUMMARY]
+    run.write_text(run.report_page(), index_html(summary))
+    run.write_text(run.report_summary(), json.dumps(_finite(asdict(summary)), indent=1, allow_nan=False))
 
 
 def _write(run: RunDir, summary: Summary, published: dict, top: int, formats, extra: dict, out: Path) -> None:
     """Every file of one protocol's report in ``out`` (``report/`` for OPE, ``report/tre``, ...)."""
     written = _write_plots(run, summary, published, top, formats, out)
-    tables = {"table.md": markdown_table(summary), "table.csv": csv_table(summary), **extra}
+    tables = {REPORT_TABLE: markdown_table(summary), REPORT_TABLE_CSV: csv_table(summary), **extra}
     for name, text in tables.items():
         written.append(run.write_text(out / name, text))
-    summary.files = sorted(p.name for p in written) + ["index.html", "summary.json"]
-    run.write_text(out / "index.html", index_html(summary))
-    run.write_text(out / "summary.json", json.dumps(_finite(asdict(summary)), indent=1, allow_nan=False))
+    summary.files = sorted(p.name for p in written) + [REPORT_PAGE, REPORT_SUMMARY]
+    run.write_text(out / REPORT_PAGE, index_html(summary))
+    run.write_text(out / REPORT_SUMMARY, json.dumps(_finite(asdict(summary)), indent=1, allow_nan=False))
 
 
 def _write_plots(run: RunDir, summary: Summary, published: dict, top: int, formats, out: Path) -> list[Path]:
