@@ -1,36 +1,43 @@
-"""Accuracy sweep: one configuration over many sequences and seeds, resumable.
+"""Accuracy sweep: one configuration over many sequences and seeds, as ``smtmvt evaluate`` run folders.
 
 Usage::
 
-    python bench/sweep.py run --tag T [--config JSON] [--seeds 3 | 3-8 | 0,4] [--workers 2]
-                          [--data DIR ...] [--out RUNS] [--sequences A,B]
+    python bench/sweep.py run --tag T --data DIR [DIR ...] [--config JSON | --config FILE.json]
+                          [--seeds 3 | 3-8 | 0,4] [--workers 2] [--out RUNS] [--sequences A,B]
     python bench/sweep.py show TAG [TAG ...] [--out RUNS] [--seeds K | a-b | i,j] [--complete]
+                          [--split bench/split.json]
     python bench/sweep.py errors TAG [--out RUNS] [--seeds ...] [--data DIR ...]
 
-``run`` tracks every sequence of every ``--data`` folder (default
-``../shared/data/otb``; add the folders that ``../shared/data/extra/build.sh``
-and ``bench/validation/build.sh`` build for the 29 measuring sequences) with
-``TrackerConfig(**config)``, once per seed index ``k`` in ``0..seeds-1``
-(or the listed ones: ``3-8``, ``0,4``). Seed ``k`` is the one ``smtmvt
-evaluate --repeat`` gives repeat ``k``
-(:func:`smtmvt.evaluation.pairs.sequence_seed`), and the score is the
-evaluation's (:func:`smtmvt.evaluation.metrics.score_sequence`), so a sweep's
-figures equal an evaluate run's. Each (sequence, seed) writes
-``RUNS/TAG/<seq>#<k>.json`` (``RUNS`` is ``--out``, default ``runs/`` in the
-project, which git ignores; average overlap, AUC, fps, boxes) once it is
-done; a run started again skips finished ones, and a larger ``--seeds`` adds
-seeds. ``run.json`` keeps the configuration: another one under the same tag is
-refused. Runs the source tree the interpreter imports ``smtmvt`` from: to
-compare against older code, run with ``PYTHONPATH=<copy of src>``.
+``run`` is ``smtmvt evaluate`` (:func:`smtmvt.evaluation.runner.run_evaluation`) of the
+tracker ``smtmvt`` with the configuration as its tracker options (``TrackerConfig``
+fields as JSON, or a JSON file of them), once per ``--data`` folder (the folders of
+sequences are arguments: ``shared/data/otb``, and the folders that
+``shared/data/extra/build.sh`` and ``bench/validation/build.sh`` build for the 29
+measuring sequences), into the run folder ``RUNS/TAG/<data folder's name>/``
+(``RUNS`` is ``--out``, default ``runs/`` in the project, which git ignores). So a
+sweep's folders have the toolkit's guarantees: the lock, atomic writes, and the settings
+check (another configuration under the same tag is refused, naming what differs); a run
+started again skips finished pairs, and a larger ``--seeds`` adds repeats. Seed index
+``k`` is evaluate's repeat ``k`` (:func:`smtmvt.evaluation.pairs.sequence_seed`):
+``--seeds N`` is ``--repeat N``; a range or list (``3-8``, ``0,4``) runs every repeat up
+to its largest (evaluate's repeats are a count), and ``show --seeds`` picks the listed
+ones. Runs the source tree the interpreter imports ``smtmvt`` from: to compare against
+older code, run with ``PYTHONPATH=<copy of src>``. ``smtmvt report RUNS/TAG/<folder>``
+gives a tag's full report.
 
-``show`` prints per-sequence means over the seeds for each tag side by side,
-the mean per seed index, and the means over all sequences and per data folder.
+``show`` scores the run folders' results as the report does
+(:func:`smtmvt.evaluation.scoring.score_result`: average overlap per sequence and
+repeat) and prints per-sequence means over the seeds for each tag side by side, the mean
+per seed index, and the means over all sequences and per data folder (``fps``: frames
+per second of tracking, from the times files). It also reads the sweep folders of
+before (``RUNS/TAG/<seq>#<k>.json``, one file per sequence and seed), so the baseline
+tags of the notes compare with new ones.
 Compare tags on the same seeds, and not only on the seeds a default was
 chosen on: those favour it (the default's seeds 0-2 average 0.626, its seeds
 0-8 0.594), so any change that reshuffles the outcomes looks worse there.
 While a sweep runs, ``--complete`` keeps only the sequences every tag has
-finished on every seed (:func:`complete_only`): a sweep runs the longest
-sequences first, and a mean over those misleads.
+finished on every seed (:func:`complete_only`): a mean over the sequences done
+first misleads.
 ``show --split bench/split.json`` adds each half's mean (the tuning and the
 checking half of ``docs/split.md``): a change is kept only when it helps the
 first and does not hurt the second.
@@ -41,7 +48,8 @@ the true centre; the median log ratio of the box's area to the truth's, and
 the median offset of its centre in the truth's widths and heights. Where
 "true size" gains much and "true centre" little, the box is on the target at
 the wrong size (stop 31: Basketball, Girl); the other way round, it is lost
-or offset (Bolt, Football).
+or offset (Bolt, Football). A run folder knows its dataset; ``--data`` is needed
+only for a sweep folder of before.
 Not a test: it measures.
 """
 
@@ -49,15 +57,13 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
-import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-DEFAULT_DATA = [str(ROOT / ".." / "shared" / "data" / "otb")]
 DEFAULT_OUT = str(ROOT / "runs")
+#: the tracker a sweep runs (evaluate's name for smtmvt.Tracker)
+TRACKER = "smtmvt"
 
 
 def _sequences(data: list[str], only: set[str] | None) -> list[tuple[str, str, str]]:
@@ -73,65 +79,77 @@ def _sequences(data: list[str], only: set[str] | None) -> list[tuple[str, str, s
     return out
 
 
-def _job(path: str, config: dict, k: int) -> dict:
-    """Track one sequence with seed index ``k``; returns the record written to disk."""
-    os.environ.setdefault("OMP_NUM_THREADS", "1")
-    import numpy as np
+def read_config(text: str) -> dict:
+    """``--config``: ``TrackerConfig`` fields as JSON text, or the path of a JSON file of them."""
+    path = Path(text)
+    source = f"--config {text}"
+    if text.strip().endswith(".json") or path.is_file():
+        try:
+            text = path.read_text(encoding="utf-8")
+        except OSError as exc:
+            sys.exit(f"sweep: {source}: cannot read it: {exc}")
+    try:
+        config = json.loads(text)
+    except json.JSONDecodeError as exc:
+        sys.exit(f"sweep: {source}: not JSON: {exc}")
+    if not isinstance(config, dict):
+        sys.exit(f"sweep: {source}: expected an object of TrackerConfig fields, got {type(config).__name__}")
+    if "seed" in config:
+        sys.exit(f"sweep: {source}: no 'seed' in a sweep's configuration; --seeds chooses the seeds")
+    return config
 
-    from smtmvt import Tracker, TrackerConfig, open_sequence
-    from smtmvt.evaluation.metrics import score_sequence
-    from smtmvt.evaluation.pairs import sequence_seed
 
-    seq = open_sequence(path)
-    seed = sequence_seed(seq.name, 0, k)
-    tracker = Tracker(TrackerConfig(**config, seed=seed))
-    boxes = np.empty((len(seq), 4))
-    t0 = time.perf_counter()
-    tracker.init(seq[0], seq.first_box)
-    boxes[0] = seq.first_box
-    for i in range(1, len(seq)):
-        boxes[i] = tracker.update(seq[i]).box
-    wall = time.perf_counter() - t0
-    score = score_sequence(boxes, np.asarray(seq.groundtruth))
-    return {
-        "sequence": seq.name,
-        "k": k,
-        "seed": seed,
-        "avg_overlap": score.avg_overlap,
-        "auc": score.auc,
-        "fps": (len(seq) - 1) / wall,
-        "boxes": boxes.round(4).tolist(),
-    }
+def _run_folders(data: list[str], tag_dir: Path) -> list[tuple[Path, Path]]:
+    """``[(data folder, its run folder RUNS/TAG/<folder name>)]``; two data folders of one
+    name would share a run folder: refused."""
+    pairs, seen = [], {}
+    for d in data:
+        root = Path(d)
+        if not root.is_dir():
+            sys.exit(f"sweep: data folder {root} does not exist")
+        if root.resolve().name in seen:
+            sys.exit(f"sweep: data folders {seen[root.resolve().name]} and {root} have one name; rename one")
+        seen[root.resolve().name] = root
+        pairs.append((root, tag_dir / root.resolve().name))
+    return pairs
 
 
 def run(args) -> None:
-    config = json.loads(args.config)
+    """``smtmvt evaluate`` of the configuration, one run folder per ``--data`` folder."""
+    from smtmvt.evaluation.rundir import RunDirError
+    from smtmvt.evaluation.runner import run_evaluation
+
+    config = read_config(args.config)
     tag_dir = Path(args.out) / args.tag
-    tag_dir.mkdir(parents=True, exist_ok=True)
-    meta = tag_dir / "run.json"
-    if meta.exists() and json.loads(meta.read_text())["config"] != config:
-        sys.exit(f"sweep: {tag_dir} was run with another configuration: {meta.read_text()}")
-    meta.write_text(json.dumps({"config": config, "data": args.data}, indent=1))
+    if _old_records(tag_dir):
+        sys.exit(f"sweep: {tag_dir} is a sweep folder of before (<seq>#<k>.json); choose another tag")
+    repeat = max(seed_indices(args.seeds)) + 1
     only = set(args.sequences.split(",")) if args.sequences else None
-    jobs = [
-        (label, name, path, k)
-        for k in seed_indices(args.seeds)
-        for label, name, path in _sequences(args.data, only)
-        if not (tag_dir / f"{name}#{k}.json").exists()
-    ]
-    # the longest sequences first, so that the pool's tail is short
-    jobs.sort(key=lambda j: -len(os.listdir(Path(j[2]) / "img")))
-    print(f"{args.tag}: {len(jobs)} runs to do", flush=True)
-    with ProcessPoolExecutor(args.workers) as pool:
-        futures = {pool.submit(_job, path, config, k): (label, name, k) for label, name, path, k in jobs}
-        for fut in as_completed(futures):
-            label, name, k = futures[fut]
-            rec = fut.result()
-            rec["folder"] = label
-            tmp = tag_dir / f".{name}#{k}.json.tmp"
-            tmp.write_text(json.dumps(rec))
-            tmp.replace(tag_dir / f"{name}#{k}.json")
-            print(f"  {name:<12} #{k}  {rec['avg_overlap']:.3f}  {rec['fps']:.1f} fps", flush=True)
+    for data, run_dir in _run_folders(args.data, tag_dir):
+        names = [name for _, name, _ in _sequences([str(data)], only)] if only is not None else None
+        if names == []:
+            continue
+        try:
+            result = run_evaluation(
+                data,
+                [TRACKER],
+                run_dir,
+                sequences=names,
+                workers=args.workers,
+                tracker_options={TRACKER: config},
+                progress=not args.quiet,
+                repeat=repeat,
+                report=False,
+            )
+        except (RunDirError, ValueError, OSError) as exc:
+            sys.exit(f"sweep: {args.tag}: {exc}")
+        print(
+            f"{args.tag} / {run_dir.name}: {len(result.done)} run(s) done, {len(result.skipped)} already done, "
+            f"{len(result.errors)} error(s)",
+            flush=True,
+        )
+        for e in result.errors:
+            print(f"  error: {e['sequence']} #{e.get('repeat', 0)}: {e['error']}", file=sys.stderr)
     show(argparse.Namespace(tags=[args.tag], out=args.out, seeds=args.seeds, complete=False, split=None))
 
 
@@ -145,14 +163,70 @@ def seed_indices(text: str) -> list[int]:
     return list(range(int(text)))
 
 
+def _old_records(tag_dir: Path) -> list[Path]:
+    """The record files of a sweep folder of before (``<seq>#<k>.json``)."""
+    return sorted(tag_dir.glob("*#*.json")) if tag_dir.is_dir() else []
+
+
 def _load(tag_dir: Path, seeds: str | None) -> dict:
-    """{(sequence, k): record} of a tag's finished runs (seed indices of ``seeds``, all when None)."""
-    recs = {}
+    """{(sequence, k): record} of a tag's finished runs (seed indices of ``seeds``, all when None).
+
+    A record: ``sequence``, ``k``, ``avg_overlap``, ``auc``, ``fps``, ``boxes`` ((n, 4)
+    pixels: 1-based from a run folder, 0-based from a sweep folder of before), ``folder`` (the
+    data folder's name) and, from a run folder, ``run_dir``."""
     keep = None if seeds is None else set(seed_indices(seeds))
-    for f in tag_dir.glob("*#*.json"):
-        rec = json.loads(f.read_text())
-        if keep is None or rec["k"] in keep:
-            recs[(rec["sequence"], rec["k"])] = rec
+    old = _old_records(tag_dir)
+    if old:
+        recs = {}
+        for f in old:
+            rec = json.loads(f.read_text())
+            if keep is None or rec["k"] in keep:
+                recs[(rec["sequence"], rec["k"])] = rec
+        return recs
+    if not tag_dir.is_dir():
+        sys.exit(f"sweep: no tag folder {tag_dir}")
+    recs = {}
+    for run_dir in sorted(p for p in tag_dir.iterdir() if p.is_dir()):
+        for (seq, k), rec in _load_run(run_dir, keep).items():
+            if (seq, k) in recs:
+                sys.exit(f"sweep: {seq} is in two run folders of {tag_dir}: {recs[seq, k]['folder']}, {run_dir.name}")
+            recs[(seq, k)] = rec
+    return recs
+
+
+def _load_run(run_dir: Path, keep: set[int] | None) -> dict:
+    """{(sequence, k): record} of one evaluate run folder's finished ``smtmvt`` results, scored
+    as the report scores them (the dataset's invalid-frame rule, ``run.json``'s frame limit)."""
+    import numpy as np
+
+    from smtmvt.evaluation.groundtruth import GroundTruth
+    from smtmvt.evaluation.rundir import RunDir
+    from smtmvt.evaluation.scoring import score_result
+
+    run = RunDir(run_dir)
+    info = run.info()  # not a run folder: RunDirError naming it
+    gt_source = GroundTruth(info.dataset)
+    recs = {}
+    for seq in info.sequences:
+        ks = [k for k in range(info.repeat) if keep is None or k in keep]
+        done = [k for k in ks if run.result_path(TRACKER, seq, k).is_file()]
+        if not done:
+            continue
+        gt = gt_source.load(seq)[: info.max_frames]
+        for k in done:
+            score = score_result(run, TRACKER, seq, k, gt, gt_source.absent_rule)
+            times = run.read_times(TRACKER, seq, k)
+            fps = float(times.size / times.sum()) if times is not None and times.sum() > 0 else float("nan")
+            recs[(seq, k)] = {
+                "sequence": seq,
+                "k": k,
+                "avg_overlap": score.avg_overlap,
+                "auc": score.auc,
+                "fps": fps,
+                "boxes": np.asarray(run.read_result(TRACKER, seq, k)),
+                "folder": run_dir.name,
+                "run_dir": str(run_dir),
+            }
     return recs
 
 
@@ -251,20 +325,34 @@ def error_split(boxes, gt) -> dict:
     }
 
 
-def errors(args) -> None:
-    """Print :func:`error_split` per sequence, the mean over the tag's seeds, and over all."""
+def _groundtruth(rec: dict, paths: dict, data: list[str]):
+    """The ground truth of a record, in its boxes' origin: a run folder's dataset (1-based, as
+    its result files), or the ``--data`` folder of a record of before (0-based)."""
     from smtmvt import open_sequence
 
-    paths = {name: path for _, name, path in _sequences(args.data, None)}
+    if "run_dir" in rec:
+        from smtmvt.evaluation.groundtruth import GroundTruth
+        from smtmvt.evaluation.rundir import RunDir
+
+        info = RunDir(rec["run_dir"]).info()
+        return GroundTruth(info.dataset).load(rec["sequence"])[: info.max_frames]
+    s = rec["sequence"]
+    if s not in paths:
+        sys.exit(f"sweep: no data folder holds {s} (--data {' '.join(data) or 'not given'})")
+    return open_sequence(paths[s]).groundtruth
+
+
+def errors(args) -> None:
+    """Print :func:`error_split` per sequence, the mean over the tag's seeds, and over all."""
+    paths = {name: path for _, name, path in _sequences(args.data or [], None)}
     recs = _load(Path(args.out) / args.tag, args.seeds)
     keys = ["ao", "ao_true_size", "ao_true_centre", "log_area", "dx", "dy"]
     print(f"{'sequence':<12}{'ao':>8}{'true size':>11}{'true ctr':>10}{'log area':>10}{'dx/w':>8}{'dy/h':>8}")
     rows = []
     for s in sorted({q for q, _ in recs}, key=str.lower):
-        if s not in paths:
-            sys.exit(f"sweep: no data folder holds {s} (--data {' '.join(args.data)})")
-        gt = open_sequence(paths[s]).groundtruth
-        splits = [error_split(r["boxes"], gt) for (q, _), r in recs.items() if q == s]
+        mine = [r for (q, _), r in recs.items() if q == s]
+        gt = _groundtruth(mine[0], paths, args.data or [])
+        splits = [error_split(r["boxes"], gt) for r in mine]
         row = [_mean(d[k] for d in splits) for k in keys]
         rows.append(row)
         print(f"{s:<12}{row[0]:>8.3f}{row[1]:>11.3f}{row[2]:>10.3f}{row[3]:>+10.2f}{row[4]:>+8.3f}{row[5]:>+8.3f}")
@@ -277,12 +365,13 @@ def main() -> None:
     sub = ap.add_subparsers(dest="cmd", required=True)
     r = sub.add_parser("run")
     r.add_argument("--tag", required=True)
-    r.add_argument("--config", default="{}", help="TrackerConfig fields as JSON")
+    r.add_argument("--data", nargs="+", required=True, metavar="DIR", help="folders of OTB sequences")
+    r.add_argument("--config", default="{}", help="TrackerConfig fields as JSON, or a .json file of them")
     r.add_argument("--seeds", default="3", help="a count N (0..N-1), a range a-b or a list i,j")
     r.add_argument("--workers", type=int, default=2)
-    r.add_argument("--data", nargs="+", default=DEFAULT_DATA)
     r.add_argument("--out", default=DEFAULT_OUT)
     r.add_argument("--sequences", default=None, help="comma-separated names (default: all)")
+    r.add_argument("--quiet", action="store_true", help="no progress bars")
     s = sub.add_parser("show")
     s.add_argument("tags", nargs="+")
     s.add_argument("--out", default=DEFAULT_OUT)
@@ -293,7 +382,7 @@ def main() -> None:
     e.add_argument("tag")
     e.add_argument("--out", default=DEFAULT_OUT)
     e.add_argument("--seeds", default=None, help="as for run (default: every seed run)")
-    e.add_argument("--data", nargs="+", default=DEFAULT_DATA)
+    e.add_argument("--data", nargs="+", default=None, help="data folders (only for a sweep folder of before)")
     args = ap.parse_args()
     {"run": run, "show": show, "errors": errors}[args.cmd](args)
 

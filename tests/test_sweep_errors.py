@@ -1,5 +1,6 @@
-"""bench/sweep.py's error split (the scored overlap, and the overlap with the true size or centre)
-and its filter of complete sequences."""
+"""bench/sweep.py: its error split (the scored overlap, and the overlap with the true size or
+centre), its filter of complete sequences, and its runs as ``smtmvt evaluate`` run folders (one per
+data folder, scored as the report scores them, beside the sweep folders of before)."""
 
 import importlib.util
 from pathlib import Path
@@ -69,3 +70,134 @@ def test_complete_only_keeps_sequences_every_tag_finished_on_every_seed():
     kept0 = sweep.complete_only({t: {k: v for k, v in r.items() if k[1] == 0} for t, r in runs.items()}, [0])
     assert sorted(s for s, _ in kept0["a"]) == ["Bolt", "Girl"]
     assert sweep.complete_only(runs, [0, 1, 2]) == {"a": {}, "b": {}}
+
+
+# --------------------------------------------------------------------------- run folders
+
+
+def _dataset(root: Path, gts: dict) -> Path:
+    """An OTB folder: one sequence per entry of ``gts`` (0-based (n, 4) boxes), black frames."""
+    import cv2
+
+    for name, gt in gts.items():
+        (root / name / "img").mkdir(parents=True)
+        for k in range(len(gt)):
+            cv2.imwrite(str(root / name / "img" / f"{k + 1:04d}.jpg"), np.zeros((48, 64, 3), np.uint8))
+        (root / name / "groundtruth_rect.txt").write_text(
+            "".join(",".join(f"{v:g}" for v in b + [1, 1, 0, 0]) + "\n" for b in gt)
+        )
+    return root
+
+
+def _run_folder(run_dir: Path, dataset: Path, results: dict, repeat: int) -> None:
+    """A run folder of tracker smtmvt holding ``results`` ({(seq, k): 0-based boxes}), as evaluate writes it."""
+    from smtmvt.evaluation.rundir import RunDir
+
+    run = RunDir(run_dir)
+    with run.locked("test", create=True):
+        run.settle(
+            dataset, trackers=["smtmvt"], sequences=sorted({s for s, _ in results}), max_frames=None, repeat=repeat
+        )
+        for (seq, k), boxes in results.items():
+            run.write_result("smtmvt", seq, boxes, np.full(len(boxes), 0.1), k)
+
+
+def _boxes(gt, shift, rng):
+    b = gt + rng.normal(0, shift, gt.shape)
+    b[:, 2:] = np.abs(b[:, 2:]) + 1
+    return b
+
+
+def test_show_scores_evaluate_run_folders_as_the_report_does(tmp_path):
+    rng = np.random.default_rng(5)
+    gts = {"Aa": np.tile([[10.0, 12.0, 20.0, 16.0]], (6, 1)), "Bb": np.tile([[5.0, 6.0, 14.0, 18.0]], (5, 1))}
+    data = _dataset(tmp_path / "otb", gts)
+    results = {(s, k): _boxes(gt, 2 + 3 * k, rng) for s, gt in gts.items() for k in (0, 1)}
+    del results[("Bb", 1)]  # a repeat not done yet
+    _run_folder(tmp_path / "runs" / "T" / "otb", data, results, repeat=2)
+    recs = sweep._load(tmp_path / "runs" / "T", None)
+    assert sorted(recs) == [("Aa", 0), ("Aa", 1), ("Bb", 0)]
+    for (s, k), rec in recs.items():
+        assert rec["avg_overlap"] == pytest.approx(score_sequence(results[s, k], gts[s]).avg_overlap, abs=1e-9)
+        assert rec["folder"] == "otb" and rec["fps"] == pytest.approx(10.0)
+    assert sorted(sweep._load(tmp_path / "runs" / "T", "1-1")) == [("Aa", 1)]  # seed index 1 only
+    # the error split reads the ground truth through the run folder: its boxes' own origin
+    split = sweep.error_split(recs["Aa", 0]["boxes"], sweep._groundtruth(recs["Aa", 0], {}, []))
+    assert split["ao"] == pytest.approx(recs["Aa", 0]["avg_overlap"], abs=1e-12)
+
+
+def test_show_compares_a_run_folder_tag_with_a_sweep_folder_of_before(tmp_path, capsys):
+    import argparse
+    import json
+
+    gt = np.tile([[10.0, 12.0, 20.0, 16.0]], (6, 1))
+    data = _dataset(tmp_path / "otb", {"Aa": gt})
+    _run_folder(tmp_path / "runs" / "new" / "otb", data, {("Aa", 0): gt.copy()}, repeat=1)
+    old = tmp_path / "runs" / "old"
+    old.mkdir()
+    rec = {
+        "sequence": "Aa",
+        "k": 0,
+        "seed": 1,
+        "avg_overlap": 0.5,
+        "auc": 0.5,
+        "fps": 3.0,
+        "boxes": gt.tolist(),
+        "folder": "otb",
+    }
+    (old / "Aa#0.json").write_text(json.dumps(rec))
+    split = tmp_path / "split.json"
+    split.write_text(json.dumps({"tune": ["Aa"], "check": ["Zz"]}))
+    args = argparse.Namespace(
+        tags=["old", "new"], out=str(tmp_path / "runs"), seeds=None, complete=True, split=str(split)
+    )
+    sweep.show(args)
+    out = capsys.readouterr().out.splitlines()
+    assert out[0].split() == ["sequence", "old", "new"]
+    assert out[1].split() == ["Aa", "0.500", "(1)", "1.000", "(1)"]
+    assert out[2].startswith("old: mean 0.500 over 1 sequences; per seed 0.500; otb 0.500 (1); 3.0 fps")
+    assert out[3] == "  tune 0.500 (1 of 1); check nan (0 of 1)"
+    assert out[4].startswith("new: mean 1.000 over 1 sequences; per seed 1.000; otb 1.000 (1); 10.0 fps")
+
+
+def test_the_configuration_is_json_or_a_json_file_and_never_names_the_seed(tmp_path):
+    assert sweep.read_config('{"n_particles": 200}') == {"n_particles": 200}
+    f = tmp_path / "c.json"
+    f.write_text('{"correlation_usual_peak": false}')
+    assert sweep.read_config(str(f)) == {"correlation_usual_peak": False}
+    with pytest.raises(SystemExit, match="seed"):
+        sweep.read_config('{"seed": 3}')
+    with pytest.raises(SystemExit, match="not JSON"):
+        sweep.read_config("{n_particles: 200}")
+    with pytest.raises(SystemExit, match="cannot read"):
+        sweep.read_config(str(tmp_path / "missing.json"))
+
+
+def test_run_makes_an_evaluate_run_folder_per_data_folder_and_refuses_another_config(tmp_path):
+    import argparse
+
+    import cv2
+
+    from smtmvt.demo import make_demo_sequence
+    from smtmvt.evaluation.rundir import RunDir
+
+    demo = make_demo_sequence(n_frames=5, size=(60, 80))
+    root = tmp_path / "otb"
+    (root / "Demo" / "img").mkdir(parents=True)
+    for k, frame in enumerate(demo.frames):
+        cv2.imwrite(str(root / "Demo" / "img" / f"{k + 1:04d}.png"), np.ascontiguousarray(frame[:, :, ::-1]))
+    (root / "Demo" / "groundtruth_rect.txt").write_text(
+        "".join(",".join(f"{v:g}" for v in np.asarray(b) + [1, 1, 0, 0]) + "\n" for b in demo.groundtruth)
+    )
+    args = argparse.Namespace(
+        tag="T", data=[str(root)], config='{"n_particles": 20}', seeds="2", workers=1,
+        out=str(tmp_path / "runs"), sequences=None, quiet=True,
+    )  # fmt: skip
+    sweep.run(args)
+    run = RunDir(tmp_path / "runs" / "T" / "otb")
+    info = run.info()
+    assert info.trackers == ["smtmvt"] and info.repeat == 2 and info.sequences == ["Demo"]
+    assert all(run.result_path("smtmvt", "Demo", k).is_file() for k in (0, 1))
+    assert sorted(sweep._load(tmp_path / "runs" / "T", None)) == [("Demo", 0), ("Demo", 1)]
+    with pytest.raises(SystemExit, match="other settings"):
+        sweep.run(argparse.Namespace(**{**vars(args), "config": '{"n_particles": 30}'}))

@@ -25,7 +25,6 @@ Usage (like OpenCV's trackers)::
 from __future__ import annotations
 
 import dataclasses
-import time
 from collections import defaultdict
 from contextlib import nullcontext
 from functools import partial
@@ -372,7 +371,8 @@ class Tracker:
 
 
 def track_frames(tracker: Tracker, frames, box):
-    """Run ``tracker`` over ``frames``: ``init`` on the first with ``box``, ``update`` on the rest.
+    """Run ``tracker`` over ``frames``: ``init`` on the first with ``box``, ``update`` on the rest
+    (:func:`smtmvt.loop.run_loop`, the one loop, in its plainest form).
 
     Parameters
     ----------
@@ -382,15 +382,11 @@ def track_frames(tracker: Tracker, frames, box):
 
     Yields
     ------
-    (frame, box, seconds) per frame: the frame, its 0-based box (``box`` itself
-    for the first frame) and the seconds spent in ``init`` / ``update`` only
-    (reading the frame is not counted).
+    (frame, box, seconds) per frame: the frame, its 0-based box as a tuple of 4 floats
+    (``box`` itself for the first frame) and the seconds spent in ``init`` / ``update``
+    only (reading the frame is not counted).
     """
-    for i, frame in enumerate(frames):
-        t0 = time.perf_counter()
-        if i == 0:
-            tracker.init(frame, box)
-            out = tuple(float(v) for v in box)
-        else:
-            out = tracker.update(frame).box
-        yield frame, out, time.perf_counter() - t0
+    from .loop import run_loop
+
+    for step in run_loop(tracker, frames, box):
+        yield step.frame, tuple(float(v) for v in step.box), step.seconds

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-import argparse
 import os
 import re
 from pathlib import Path
+
+from ..argtypes import bounded_int, positive_int
 
 __all__ = ["positive_int", "bounded_int", "check_writable", "same_file", "join_negative_values"]
 
@@ -13,35 +14,6 @@ __all__ = ["positive_int", "bounded_int", "check_writable", "same_file", "join_n
 _NEGATIVE_LIST = re.compile(r"-\d[\d.eE+-]*(?:[,\s]+[+-]?[\d.][\d.eE+-]*)+")
 #: options whose value may start with a minus sign (argparse would take it for an option)
 NUMBER_LIST_OPTIONS = ("--box",)
-
-
-def positive_int(text: str) -> int:
-    """argparse type: a whole number >= 1 (``--max-frames``, ``--workers``, ...)."""
-    try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a whole number >= 1, got {text!r}")
-    return value
-
-
-def bounded_int(low: int, high: int):
-    """argparse type: a whole number from ``low`` to ``high`` (``--repeat``: 1 to 1000)."""
-
-    def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            value = low - 1
-        if value < low:  # the message of positive_int for low = 1
-            raise argparse.ArgumentTypeError(f"expected a whole number >= {low}, got {text!r}")
-        if value > high:
-            raise argparse.ArgumentTypeError(f"expected a whole number from {low} to {high}, got {text!r}")
-        return value
-
-    parse.__name__ = f"whole number from {low} to {high}"
-    return parse
 
 
 def join_negative_values(argv: list[str], options=NUMBER_LIST_OPTIONS) -> list[str]:

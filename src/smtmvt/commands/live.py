@@ -135,21 +135,21 @@ def check_live_args(args) -> None:
         raise ValueError(f"--groundtruth {args.groundtruth}: a live source has no frames to match a ground truth to")
 
 
-def _frames(capture: LiveCapture, first: np.ndarray, limit: int | None):
-    """``first``, then the capture's frames until it ends or ``limit`` frames in all."""
+def _frames(capture: LiveCapture, first: np.ndarray):
+    """``first``, then the capture's frames until it ends (the loop's ``limit`` stops it before
+    a frame past ``--max-frames`` is read)."""
     yield first
-    n = 1
-    while limit is None or n < limit:
+    while True:
         frame = capture.read()
         if frame is None:
             return
-        n += 1
         yield frame
 
 
 def run_live(args, tracker, check_outputs) -> int:
-    """Track a live source (see the module); ``tracker`` records confidence and lost
-    (``track._Recorder``), ``check_outputs(inputs)`` refuses outputs that cannot be written."""
+    """Track a live source (see the module) with ``tracker`` (a :class:`smtmvt.Tracker`: its
+    ``update`` gives confidence and lost); ``check_outputs(inputs)`` refuses outputs that
+    cannot be written."""
     check_live_args(args)
     check_outputs([("live source", args.source)] if Path(args.source).exists() else [])
     try:
@@ -177,16 +177,17 @@ def _track_live(tracker, capture, first, box0, writer, args) -> tuple[int, float
     from tqdm import tqdm
 
     from ..interrupts import check_stop
-    from ..tracker import track_frames
+    from ..loop import run_loop
     from .track import _sink
 
     sink = _sink(args.video)
     bar = tqdm(total=args.max_frames, unit="frame", disable=args.quiet, desc=capture.name)
     seconds, why = 0.0, "end of the source"
     try:
-        for frame, box, dt in track_frames(tracker, _frames(capture, first, args.max_frames), box0):
-            seconds += dt
-            confidence, lost = tracker.confidence[-1], tracker.lost[-1]
+        for step in run_loop(tracker, _frames(capture, first), box0, limit=args.max_frames):
+            frame, box, lost = step.frame, step.box, step.lost
+            seconds += step.seconds
+            confidence = float("nan") if step.confidence is None else step.confidence
             writer.add(box, confidence, lost)
             if sink is not None:
                 sink.add(annotate(frame, box, confidence, lost)[:, :, ::-1])

@@ -107,15 +107,15 @@ def _extra_outputs(args) -> list[tuple[str, str | None]]:
     return [("--video", args.video), ("--scores", getattr(args, "scores", None))]
 
 
-def _tracker(args) -> _Recorder:
-    """The tracker the options ask for (``--seed``, ``--particles``), recording confidence and lost."""
+def _tracker(args):
+    """The tracker the options ask for (``--seed``, ``--particles``)."""
     from ..config import TrackerConfig
     from ..tracker import Tracker
 
     overrides = {"seed": args.seed}
     if args.particles:
         overrides["n_particles"] = args.particles
-    return _Recorder(Tracker(TrackerConfig(**overrides)))
+    return Tracker(TrackerConfig(**overrides))
 
 
 def run_track(args) -> int:
@@ -149,11 +149,11 @@ def _track_sequence(args) -> int:
     n = len(seq) if args.max_frames is None else min(len(seq), args.max_frames)
     tracker = _tracker(args)
     sink = _sink(args.video)
-    boxes, track_time = _track_all(tracker, seq, n, box0, sink, args)
+    boxes, confidence, lost, track_time = _track_all(tracker, seq, n, box0, sink, args)
     write_boxes(args.out, boxes)  # complete: every frame has its box
     if args.scores:
         try:
-            write_scores(args.scores, boxes, tracker.confidence, tracker.lost)
+            write_scores(args.scores, boxes, confidence, lost)
         except OSError as exc:
             raise OSError(f"{args.out} written; the scores file {args.scores} failed: {exc}") from exc
     if sink is not None:
@@ -165,26 +165,6 @@ def _track_sequence(args) -> int:
     return 0
 
 
-class _Recorder:
-    """A tracker that records, frame by frame, what its ``update`` said besides the
-    box: ``confidence`` and ``lost`` lists (the ``init`` frame's: 1.0, False)."""
-
-    def __init__(self, tracker) -> None:
-        self.tracker = tracker
-        self.confidence: list[float] = []
-        self.lost: list[bool] = []
-
-    def init(self, frame, box) -> None:
-        self.tracker.init(frame, box)
-        self.confidence, self.lost = [1.0], [False]
-
-    def update(self, frame):
-        result = self.tracker.update(frame)
-        self.confidence.append(result.confidence)
-        self.lost.append(result.lost)
-        return result
-
-
 def _sink(path):
     from ..visualize import VideoSink
 
@@ -192,26 +172,31 @@ def _sink(path):
 
 
 def _track_all(tracker, seq, n, box0, sink, args):
-    """``(boxes (n, 4) 0-based, seconds of tracking)``; on any failure nothing is kept and the
-    error says how far it got and that ``--out`` was not written."""
+    """``(boxes (n, 4) 0-based, confidence (n,), lost (n,), seconds of tracking)`` (the first
+    frame's confidence and lost: 1.0, False); on any failure nothing is kept and the error says
+    how far it got and that ``--out`` was not written."""
     from tqdm import tqdm
 
     from ..interrupts import check_stop
-    from ..tracker import track_frames
+    from ..loop import run_loop
     from ..visualize import draw_box
 
     boxes = np.full((n, 4), np.nan)
+    confidence = np.full(n, np.nan)
+    lost = np.zeros(n, dtype=bool)
     done, track_time = 0, 0.0
     bar = tqdm(total=n, unit="frame", disable=args.quiet, desc=seq.name)
     try:
-        for i, (frame, box, seconds) in enumerate(track_frames(tracker, (seq[i] for i in range(n)), box0)):
-            boxes[i] = box
-            done, track_time = i + 1, track_time + seconds
+        for step in run_loop(tracker, (seq[i] for i in range(n)), box0, limit=n):
+            i = step.index
+            boxes[i], lost[i] = step.box, step.lost
+            confidence[i] = np.nan if step.confidence is None else step.confidence
+            done, track_time = i + 1, track_time + step.seconds
             if sink is not None:
-                img = frame
+                img = step.frame
                 if seq.groundtruth is not None and np.all(np.isfinite(seq.groundtruth[i])):
                     img = draw_box(img, seq.groundtruth[i], (0, 255, 0))
-                sink.add(draw_box(img, box, (255, 0, 0), "smtmvt"))
+                sink.add(draw_box(img, step.box, (255, 0, 0), "smtmvt"))
             bar.update(1)
             bar.set_postfix(fps=f"{done / max(track_time, 1e-9):.1f}")
             check_stop()  # a signal whose exception compiled code dropped
@@ -225,7 +210,7 @@ def _track_all(tracker, seq, n, box0, sink, args):
         raise
     finally:
         bar.close()
-    return boxes, track_time
+    return boxes, confidence, lost, track_time
 
 
 def _summary(seq, n, boxes, track_time, out) -> str:

@@ -70,31 +70,9 @@ def open_sequence(source, groundtruth=None, name=None, *, target=None) -> Sequen
     if path.is_dir():
         if is_otb_folder(path):
             return open_otb_sequence(path, groundtruth, name, target=target)
-        files = list_images(path)
-        if not files:
-            raise SequenceError(
-                f"no image files in folder {path} (looked for {', '.join(IMAGE_EXTENSIONS)}; "
-                f"an OTB sequence folder has them in img/)",
-                path=path,
-            )
-        gt_file, k = (groundtruth, None) if groundtruth is not None else find_groundtruth(path, target)
-        if name is None:
-            name = path.name if k is None else f"{path.name}-{k}"
-        return _with_groundtruth(ImageSequence, files, name, gt_file, source=path)
+        return _open_image_folder(path, groundtruth, name, target)
     if path.is_file():
-        suffix = path.suffix.lower()
-        if suffix in VIDEO_EXTENSIONS:
-            n = count_video_frames(path)
-            name = name or path.stem
-            gt = None if groundtruth is None else _load_groundtruth(groundtruth, n, name, path)
-            return VideoSequence(path, name, gt, groundtruth_file=groundtruth, n_frames=n)
-        if is_image_file(path):
-            return _with_groundtruth(ImageSequence, [path], name or path.stem, groundtruth, source=path)
-        raise SequenceError(
-            f"unknown file type {path.suffix!r}: {path} (expected a video {', '.join(VIDEO_EXTENSIONS)}, "
-            f"an image, a folder or a glob pattern)",
-            path=path,
-        )
+        return _open_file(path, groundtruth, name)
     if _GLOB_CHARS & set(text):
         matches = [Path(p) for p in glob.glob(text, recursive=True)]
         files = sorted((p for p in matches if p.is_file() and is_image_file(p)), key=lambda p: natural_key(str(p)))
@@ -103,6 +81,40 @@ def open_sequence(source, groundtruth=None, name=None, *, target=None) -> Sequen
             raise SequenceError(f"no image files match the pattern {text}{others}", path=text)
         return _with_groundtruth(ImageSequence, files, name or _pattern_name(text), groundtruth, source=text)
     raise SequenceError(f"no such file or folder: {text}", path=text)
+
+
+def _open_image_folder(path: Path, groundtruth, name, target) -> Sequence:
+    """A folder of images (not OTB's ``img/`` layout), natural order, with the ground truth
+    given or found beside them (:func:`open_sequence`)."""
+    files = list_images(path)
+    if not files:
+        raise SequenceError(
+            f"no image files in folder {path} (looked for {', '.join(IMAGE_EXTENSIONS)}; "
+            f"an OTB sequence folder has them in img/)",
+            path=path,
+        )
+    gt_file, k = (groundtruth, None) if groundtruth is not None else find_groundtruth(path, target)
+    if name is None:
+        name = path.name if k is None else f"{path.name}-{k}"
+    return _with_groundtruth(ImageSequence, files, name, gt_file, source=path)
+
+
+def _open_file(path: Path, groundtruth, name) -> Sequence:
+    """A video file or a single image (a one-frame sequence); SequenceError naming the file
+    for another type (:func:`open_sequence`)."""
+    suffix = path.suffix.lower()
+    if suffix in VIDEO_EXTENSIONS:
+        n = count_video_frames(path)
+        name = name or path.stem
+        gt = None if groundtruth is None else _load_groundtruth(groundtruth, n, name, path)
+        return VideoSequence(path, name, gt, groundtruth_file=groundtruth, n_frames=n)
+    if is_image_file(path):
+        return _with_groundtruth(ImageSequence, [path], name or path.stem, groundtruth, source=path)
+    raise SequenceError(
+        f"unknown file type {path.suffix!r}: {path} (expected a video {', '.join(VIDEO_EXTENSIONS)}, "
+        f"an image, a folder or a glob pattern)",
+        path=path,
+    )
 
 
 def _load_groundtruth(gt_file, n_frames: int, name: str, source):

@@ -33,8 +33,8 @@ import ast
 import sys
 from pathlib import Path
 
-from ..commands.args import bounded_int, positive_int
-from .rundir import MAX_REPEAT
+from ..argtypes import bounded_int, positive_int
+from .rundir import MAX_REPEAT, RunDir
 
 __all__ = ["add_parsers", "cmd_evaluate", "cmd_report", "parse_tracker_options"]
 
@@ -199,7 +199,7 @@ def parse_tracker_options(items) -> dict:
 def _print_errors(errors, run_dir: Path) -> None:
     if not errors:
         return
-    print(f"{len(errors)} error(s) (kept in {run_dir / 'errors.json'}):", file=sys.stderr)
+    print(f"{len(errors)} error(s) (kept in {RunDir(run_dir).errors_json}):", file=sys.stderr)
     for e in errors:
         where = e["tracker"] if e["sequence"] is None else f"{e['tracker']} / {e['sequence']}"
         if e.get("part"):
@@ -230,11 +230,11 @@ def _print_report(summary, run_dir: Path) -> None:
     for protocol, sub in protocols.items():
         print(f"{protocol.upper()}:")
         _print_trackers(sub.get("trackers", {}))
-    report_dir = run_dir / "report"
-    for folder in (report_dir, *(report_dir / p for p in protocols)):
-        for name in ("table.md", "index.html"):
-            if (folder / name).exists():
-                print(f"report: {folder / name}")
+    run = RunDir(run_dir)
+    for protocol in ("ope", *protocols):
+        for path in (run.report_table(protocol), run.report_page(protocol)):
+            if path.exists():
+                print(f"report: {path}")
 
 
 def _print_gaps(summary) -> list:
@@ -276,7 +276,7 @@ def cmd_evaluate(args) -> int:
         names = ", ".join(run.cut_short[:5]) + (", ..." if len(run.cut_short) > 5 else "")
         n_cut = len(run.cut_short)
         print(f"note: --max-frames {args.max_frames}: {n_cut} sequence(s) cut short ({names}): not OTB-compliant")
-    print(f"results: {run.run_dir / 'results'}")
+    print(f"results: {RunDir(run.run_dir).results_dir}")
     _print_errors(run.errors, run.run_dir)
     if args.no_report:
         return 0 if run.ok else 1
@@ -301,7 +301,6 @@ def _split_import(item: str):
 def cmd_report(args) -> int:
     from .imports import import_into_run
     from .report import build_report
-    from .rundir import RunDir
 
     run = RunDir(args.run_dir)
     run.info()  # not a run folder: one clear error, nothing created

@@ -20,7 +20,8 @@ from pathlib import Path
 import numpy as np
 
 from ..data import Sequence
-from ..interrupts import check_stop, reraise_interruption
+from ..interrupts import reraise_interruption
+from ..loop import LoopPosition, run_loop
 from .trackers import accepts_keyword
 
 __all__ = ["PairTask", "PairOutcome", "run_pair", "sequence_seed", "describe"]
@@ -145,29 +146,25 @@ def run_pair(task: PairTask, on_frame: Callable[[int], None] | None = None) -> P
 
 def _track(tracker, task: PairTask, step: _Step, on_frame) -> tuple[np.ndarray, np.ndarray]:
     """Boxes ``(n, 4)`` of frames ``start .. start + n - 1`` (the first: the start box) and
-    seconds ``(n,)`` of the tracker's own calls (init, update), excluding reading the frames."""
+    seconds ``(n,)`` of the tracker's own calls (init, update), excluding reading the frames
+    (:func:`smtmvt.loop.run_loop`)."""
     seq, n, start = task.sequence, task.n_frames, task.start
     step.what = "reading the first ground-truth box"
     first = tuple(float(v) for v in (seq.first_box if task.init_box is None else task.init_box))
     boxes = np.empty((n, 4), dtype=np.float64)
     times = np.empty(n, dtype=np.float64)
-    for i in range(n):
-        check_stop()
-        step.frame, step.what = start + i, "reading"
-        frame = seq[start + i]
-        step.what = "tracking"
-        t0 = time.perf_counter()
-        if i == 0:
-            tracker.init(frame, first)
-            box = np.asarray(first)
-        else:
-            box = np.asarray(tracker.update(frame), dtype=np.float64).reshape(-1)
-        times[i] = time.perf_counter() - t0
-        if box.shape != (4,):
-            raise ValueError(f"update() returned {box.size} numbers, expected x, y, w, h")
-        boxes[i] = box
-        if on_frame is not None:
-            on_frame(1)
+    position = LoopPosition()
+    frames = (seq[start + i] for i in range(n))
+    try:
+        for frame_step in run_loop(tracker, frames, first, limit=n, position=position):
+            boxes[frame_step.index] = frame_step.box
+            times[frame_step.index] = frame_step.seconds
+            if on_frame is not None:
+                on_frame(1)
+    except BaseException:
+        if position.index is not None:  # for the error message: the frame and what failed on it
+            step.frame, step.what = start + position.index, position.stage
+        raise
     bad = ~np.isfinite(boxes).all(axis=1)
     if bad.any():
         step.frame, step.what = start + int(np.argmax(bad)), "checking the boxes"

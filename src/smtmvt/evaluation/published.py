@@ -492,6 +492,31 @@ def import_results(
     ``ValueError`` naming the file (and line, for text).
     """
     path = Path(path)
+    fmt = _import_format(path, fmt)
+    if not path.exists():
+        raise FileNotFoundError(f"{path}: no such file or folder")
+    want_trk = None if trackers is None else {t.lower() for t in trackers}
+    want_seq = None if sequences is None else {canonical_name(s) for s in sequences}
+    items = _read_imports(path, fmt, want_trk, want_seq)
+
+    out: dict[str, dict[str, ImportedResult]] = {}
+    for item in items:
+        out.setdefault(item.tracker, {})[item.sequence] = item
+    if tracker_name is not None:
+        if len(out) > 1:
+            raise ValueError(
+                f"{path}: holds {len(out)} trackers ({', '.join(sorted(out))}); "
+                "pick one with trackers=[...] before renaming it"
+            )
+        only = next(iter(out.values()), {})
+        out = {tracker_name: {s: _renamed(r, tracker_name) for s, r in only.items()}} if out else {}
+    return out
+
+
+def _import_format(path: Path, fmt: str) -> str:
+    """``"otb-mat"``, ``"otb-json"`` or ``"text"``: ``fmt`` or one of its other names
+    (``got10k``, ``pysot``, ``mat``, ``json``, ...), or what the files at ``path`` are for
+    ``"auto"``; ValueError for another name."""
     fmt = fmt.lower()
     if fmt in ("got10k", "pysot", "pytracking", "txt"):
         fmt = "text"
@@ -503,11 +528,12 @@ def import_results(
         fmt = _detect_format(path)
     if fmt not in ("otb-mat", "otb-json", "text"):
         raise ValueError(f"unknown import format {fmt!r}: expected auto, otb-mat, otb-json, got10k, pysot")
-    if not path.exists():
-        raise FileNotFoundError(f"{path}: no such file or folder")
-    want_trk = None if trackers is None else {t.lower() for t in trackers}
-    want_seq = None if sequences is None else {canonical_name(s) for s in sequences}
+    return fmt
 
+
+def _read_imports(path: Path, fmt: str, want_trk: set | None, want_seq: set | None) -> list[ImportedResult]:
+    """Every result of format ``fmt`` at ``path`` whose tracker (lower case) is in ``want_trk``
+    and sequence (:func:`canonical_name`) in ``want_seq`` (None: all)."""
     items: list[ImportedResult] = []
     if fmt == "otb-mat":
         files = [path] if path.is_file() else sorted(path.rglob("*.mat"))
@@ -546,18 +572,7 @@ def import_results(
                     continue
                 items.append(_read_text_result(f, trk))
 
-    out: dict[str, dict[str, ImportedResult]] = {}
-    for item in items:
-        out.setdefault(item.tracker, {})[item.sequence] = item
-    if tracker_name is not None:
-        if len(out) > 1:
-            raise ValueError(
-                f"{path}: holds {len(out)} trackers ({', '.join(sorted(out))}); "
-                "pick one with trackers=[...] before renaming it"
-            )
-        only = next(iter(out.values()), {})
-        out = {tracker_name: {s: _renamed(r, tracker_name) for s, r in only.items()}} if out else {}
-    return out
+    return items
 
 
 def _renamed(r: ImportedResult, name: str) -> ImportedResult:

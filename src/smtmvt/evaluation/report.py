@@ -49,13 +49,13 @@ from .page import index_html
 from .paper_table import paper_table_files
 from .plots import Curve, render_curves, select_curves
 from .published import ATTRIBUTE_NAMES, benchmark_label, load_attribute_table, load_published_scores
-from .rundir import RunDir, RunInfo
+from .rundir import REPORT, REPORT_PAGE, REPORT_SUMMARY, REPORT_TABLE, REPORT_TABLE_CSV, RunDir, RunInfo
 from .scoring import PROTOCOL_NOTES, Summary, score_run
 from .tables import csv_table, markdown_table
 
 __all__ = ["build_report", "load_groundtruth_source", "REPORT_DIR"]
 
-REPORT_DIR = "report"
+REPORT_DIR = REPORT  # kept for callers of this module; the name is RunDir's
 
 
 def build_report(
@@ -124,43 +124,66 @@ def build_report(
     with run.locked("smtmvt report"):
         info = run.info()
         repeat = _check_repeat(run, info, repeat)
-        dataset = dataset if dataset is not None else info.dataset
-        if not dataset:
-            raise ValueError(f"{run.root}: no dataset given and run.json names none (pass dataset=...)")
-        published = (info.published if published is None else published) or None
-        names = _trackers(run, info, trackers)
-        if not names:
-            raise ValueError(
-                f"{run.root}: no tracker to report (run.json names none and results/ has no tracker folder); "
-                "run smtmvt evaluate on it, or import results with smtmvt report --import"
-            )
+        dataset, published, names = _sources(run, info, dataset, published, trackers)
         gt = GroundTruth(dataset)
         invalid = invalid or gt.absent_rule
         errors: list[dict] = []
         table, source = _attribute_table(attributes, info, published, gt, errors)
-        seqs = _sequences(run, info, gt, sequences)
         settings = {
             "run_dir": str(run.root), "dataset": str(dataset), "invalid": invalid, "benchmark": benchmark,
             "top": top, "attributes": source, "max_frames": info.max_frames, "repeat": repeat,
         }  # fmt: skip
-        scored = {}
-        for protocol in info.protocols:
-            ours = names if protocol == "ope" else [t for t in names if not run.is_imported(t)]
-            scored[protocol] = score_run(
-                run, info, gt, trackers=ours, sequences=seqs, repeat=repeat, invalid=invalid,
-                attribute_table=table, protocol=protocol,
-            )  # fmt: skip
-            scored[protocol].settings = settings | {"protocol": PROTOCOL_NOTES[protocol]}
+        scored = _score_protocols(run, info, gt, names, _sequences(run, info, gt, sequences), table, settings)
         summary = _top_summary(run, scored, errors, settings, top, formats)
-        if "ope" in scored:
-            curves = _published(summary, published, benchmark)
-            extra = paper_table_files(summary.trackers, summary.sequences, published, info.max_frames)
-            if paper_table and not extra:
-                summary.errors.append({"error": "--paper-table: the run holds none of the paper's sequences"})
-            _write(run, summary, curves, top, formats, extra, run.report_dir)
-        else:
-            _write_index(run, summary)
+        _write_top(run, info, summary, "ope" in scored, published, paper_table, formats)
     return _finite(asdict(summary))
+
+
+def _sources(run: RunDir, info: RunInfo, dataset, published, trackers) -> tuple:
+    """``(dataset, published or None, tracker names)`` of a report: the arguments, else
+    ``run.json``'s (trackers: also every tracker folder); ValueError when there is no
+    dataset or no tracker."""
+    dataset = dataset if dataset is not None else info.dataset
+    if not dataset:
+        raise ValueError(f"{run.root}: no dataset given and run.json names none (pass dataset=...)")
+    names = _trackers(run, info, trackers)
+    if not names:
+        raise ValueError(
+            f"{run.root}: no tracker to report (run.json names none and results/ has no tracker folder); "
+            "run smtmvt evaluate on it, or import results with smtmvt report --import"
+        )
+    return dataset, (info.published if published is None else published) or None, names
+
+
+def _write_top(run: RunDir, info: RunInfo, summary: Summary, ope: bool, published, paper_table: bool, formats) -> None:
+    """``report/``: OPE's report (``ope``: the run holds OPE results), with the published
+    curves beside ours and the paper's table (when asked or when the run holds a sequence of
+    it); else just the page linking the other protocols' reports."""
+    if not ope:
+        _write_index(run, summary)
+        return
+    settings = summary.settings
+    curves = _published(summary, published, settings["benchmark"])
+    extra = paper_table_files(summary.trackers, summary.sequences, published, info.max_frames)
+    if paper_table and not extra:
+        summary.errors.append({"error": "--paper-table: the run holds none of the paper's sequences"})
+    _write(run, summary, curves, settings["top"], formats, extra, run.report_dir)
+
+
+def _score_protocols(
+    run: RunDir, info: RunInfo, gt: GroundTruth, names: list[str], seqs: list[str], table: dict, settings: dict
+) -> dict[str, Summary]:
+    """``{protocol: Summary}`` of each protocol the run holds (imported trackers: OPE only);
+    ``settings`` (``repeat``, ``invalid``, ...) is what the report states it was made with."""
+    scored = {}
+    for protocol in info.protocols:
+        ours = names if protocol == "ope" else [t for t in names if not run.is_imported(t)]
+        scored[protocol] = score_run(
+            run, info, gt, trackers=ours, sequences=seqs, repeat=settings["repeat"], invalid=settings["invalid"],
+            attribute_table=table, protocol=protocol,
+        )  # fmt: skip
+        scored[protocol].settings = settings | {"protocol": PROTOCOL_NOTES[protocol]}
+    return scored
 
 
 def _check_repeat(run: RunDir, info: RunInfo, repeat: int | None) -> int:
@@ -248,7 +271,7 @@ def _top_summary(run: RunDir, scored: dict[str, Summary], errors: list, settings
     (or an empty one), with the others' summaries in ``protocols`` and every error, once."""
     for protocol, other in scored.items():
         if protocol != "ope":
-            _write(run, other, {}, top, formats, {}, run.report_dir / protocol)
+            _write(run, other, {}, top, formats, {}, run.protocol_report_dir(protocol))
     summary = scored.get("ope") or _empty_summary(settings)
     summary.errors[:0] = errors
     summary.protocols = {p: _finite(asdict(other)) for p, other in scored.items() if p != "ope"}
@@ -276,20 +299,20 @@ def _empty_summary(settings: dict) -> Summary:
 
 def _write_index(run: RunDir, summary: Summary) -> None:
     """``index.html`` (links to the protocols' pages) and ``summary.json`` of a run without OPE."""
-    summary.files = ["index.html", "summary.json"]
-    run.write_text(run.report_dir / "index.html", index_html(summary))
-    run.write_text(run.report_dir / "summary.json", json.dumps(_finite(asdict(summary)), indent=1, allow_nan=False))
+    summary.files = [REPORT_PAGE, REPORT_SUMMARY]
+    run.write_text(run.report_page(), index_html(summary))
+    run.write_text(run.report_summary(), json.dumps(_finite(asdict(summary)), indent=1, allow_nan=False))
 
 
 def _write(run: RunDir, summary: Summary, published: dict, top: int, formats, extra: dict, out: Path) -> None:
     """Every file of one protocol's report in ``out`` (``report/`` for OPE, ``report/tre``, ...)."""
     written = _write_plots(run, summary, published, top, formats, out)
-    tables = {"table.md": markdown_table(summary), "table.csv": csv_table(summary), **extra}
+    tables = {REPORT_TABLE: markdown_table(summary), REPORT_TABLE_CSV: csv_table(summary), **extra}
     for name, text in tables.items():
         written.append(run.write_text(out / name, text))
-    summary.files = sorted(p.name for p in written) + ["index.html", "summary.json"]
-    run.write_text(out / "index.html", index_html(summary))
-    run.write_text(out / "summary.json", json.dumps(_finite(asdict(summary)), indent=1, allow_nan=False))
+    summary.files = sorted(p.name for p in written) + [REPORT_PAGE, REPORT_SUMMARY]
+    run.write_text(out / REPORT_PAGE, index_html(summary))
+    run.write_text(out / REPORT_SUMMARY, json.dumps(_finite(asdict(summary)), indent=1, allow_nan=False))
 
 
 def _write_plots(run: RunDir, summary: Summary, published: dict, top: int, formats, out: Path) -> list[Path]:

@@ -65,6 +65,11 @@ ERRORS_JSON = "errors.json"
 LOCK = ".lock"
 RESULTS = "results"
 REPORT = "report"
+#: files of a protocol's report folder (``report/`` for OPE, ``report/<protocol>/`` else)
+REPORT_SUMMARY = "summary.json"
+REPORT_TABLE = "table.md"
+REPORT_TABLE_CSV = "table.csv"
+REPORT_PAGE = "index.html"
 IMPORT_JSON = "import.json"
 META = "meta"
 _TRACKER_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]*")
@@ -238,6 +243,26 @@ class RunDir:
     @property
     def report_dir(self) -> Path:
         return self.root / REPORT
+
+    def protocol_report_dir(self, protocol: str = "ope") -> Path:
+        """``report/`` for OPE, ``report/<protocol>/`` for TRE and SRE."""
+        if protocol == "ope":
+            return self.report_dir
+        if protocol not in SEGMENTED_PROTOCOLS:
+            raise ValueError(f"protocol {protocol!r}: expected one of {', '.join(ALL_PROTOCOLS)}")
+        return self.report_dir / protocol
+
+    def report_summary(self, protocol: str = "ope") -> Path:
+        """The protocol's ``summary.json`` (what :func:`.report.build_report` returned for it)."""
+        return self.protocol_report_dir(protocol) / REPORT_SUMMARY
+
+    def report_table(self, protocol: str = "ope") -> Path:
+        """The protocol's ``table.md``."""
+        return self.protocol_report_dir(protocol) / REPORT_TABLE
+
+    def report_page(self, protocol: str = "ope") -> Path:
+        """The protocol's ``index.html``."""
+        return self.protocol_report_dir(protocol) / REPORT_PAGE
 
     def tracker_dir(self, tracker: str, repeat: int = 0) -> Path:
         """``results/<tracker>`` for repeat 0, ``results/<tracker>/repeat-<r>`` after."""

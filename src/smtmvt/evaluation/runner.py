@@ -287,7 +287,9 @@ def run_evaluation(
     t_run = time.perf_counter()
     dataset_dir = Path(dataset_dir).expanduser().resolve()
     sequences = _check_arguments(dataset_dir, sequences, max_frames, workers, repeat)
-    protocols = parse_protocols(protocols)
+    request = _Request(
+        max_frames, repeat, attributes, published, overwrite, parse_protocols(protocols), workers, scheduler, progress
+    )
     run = RunDir(out_dir)
     run.check_can_hold_run()  # a folder that is not a run: refused before anything else
     _check_attributes(attributes)
@@ -296,48 +298,73 @@ def run_evaluation(
     if isinstance(scheduler, str):
         probe_scheduler(scheduler)  # a wrong address fails in seconds, before the run folder is touched
     with run.locked("smtmvt evaluate", create=True):
-        seqs, seq_errors, unknown_seqs = _open_sequences(dataset_dir, sequences)
-        if not seqs and not seq_errors and not unknown_seqs:
-            raise ValueError(
-                f"no sequence in {dataset_dir} (OTB: sub-folders with img/ and groundtruth_rect.txt; "
-                "or a GOT-10k, LaSOT, UAV123 or VOT folder)"
-            )
-        names = [s.name for s in seqs] + [n for n, _ in seq_errors if n]
-        probes = {spec.name: _tracker_problem(run, spec, tracker_options.get(spec.name, {})) for spec in known}
-        info, notes = run.settle(
-            dataset_dir,
-            trackers=[s.name for s in known],
-            sequences=names,
-            max_frames=max_frames,
-            repeat=repeat,
-            attributes=attributes,
-            published=published,
-            overwrite=overwrite,
-            tracker_settings={name: settings for name, (_, settings) in probes.items() if settings is not None},
-            protocols=protocols,
-        )
-        result = RunResult(run.root, [s.name for s in known], [s.name for s in seqs], notes=notes, repeat=info.repeat)
-        if info.max_frames is not None:
-            result.cut_short = [s.name for s in seqs if len(s) > info.max_frames]
-        book = _Book(run, result, info)
-        for name, message in unknown:
-            book.record(name, None, message)
-        for sname, message in unknown_seqs + seq_errors:
-            for spec in known:
-                book.record(spec.name, sname, message)
-        layout = detect_layout(dataset_dir)
-        starts = {seq.name: _starts(seq, protocols, info.max_frames, layout) for seq in seqs}
-        tasks = _plan(book, known, seqs, tracker_options, probes, starts, parallel=scheduler is not None or workers > 1)
-        with Progress(len(tasks), sum(t.n_frames for t in tasks), progress) as bars:
-
-            def finish(task: PairTask, outcome: PairOutcome | None, failure: str | None) -> None:
-                book.finish(task, outcome, failure)
-                bars.pair_done(task)
-
-            run_tasks(tasks, finish, bars, workers=workers, scheduler=scheduler)
+        result = _run_locked(run, dataset_dir, sequences, known, unknown, tracker_options, request)
         result.seconds = time.perf_counter() - t_run
         if report:
             _make_report(result, run, attributes, published)
+    return result
+
+
+@dataclass(frozen=True)
+class _Request:
+    """What :func:`run_evaluation` was asked for besides the dataset, trackers and sequences
+    (checked; ``protocols`` parsed)."""
+
+    max_frames: int | None
+    repeat: int | None
+    attributes: object
+    published: object
+    overwrite: bool
+    protocols: list[str]
+    workers: int
+    scheduler: object
+    progress: bool
+
+
+def _run_locked(run: RunDir, dataset_dir: Path, sequences, known, unknown, tracker_options: dict, req: _Request):
+    """The body of :func:`run_evaluation`, under the run folder's lock: open the sequences,
+    settle ``run.json`` (the settings check), record the unknown names and unreadable
+    sequences, then run the pairs left to do. Returns the :class:`RunResult` (no report yet)."""
+    seqs, seq_errors, unknown_seqs = _open_sequences(dataset_dir, sequences)
+    if not seqs and not seq_errors and not unknown_seqs:
+        raise ValueError(
+            f"no sequence in {dataset_dir} (OTB: sub-folders with img/ and groundtruth_rect.txt; "
+            "or a GOT-10k, LaSOT, UAV123 or VOT folder)"
+        )
+    names = [s.name for s in seqs] + [n for n, _ in seq_errors if n]
+    probes = {spec.name: _tracker_problem(run, spec, tracker_options.get(spec.name, {})) for spec in known}
+    info, notes = run.settle(
+        dataset_dir,
+        trackers=[s.name for s in known],
+        sequences=names,
+        max_frames=req.max_frames,
+        repeat=req.repeat,
+        attributes=req.attributes,
+        published=req.published,
+        overwrite=req.overwrite,
+        tracker_settings={name: settings for name, (_, settings) in probes.items() if settings is not None},
+        protocols=req.protocols,
+    )
+    result = RunResult(run.root, [s.name for s in known], [s.name for s in seqs], notes=notes, repeat=info.repeat)
+    if info.max_frames is not None:
+        result.cut_short = [s.name for s in seqs if len(s) > info.max_frames]
+    book = _Book(run, result, info)
+    for name, message in unknown:
+        book.record(name, None, message)
+    for sname, message in unknown_seqs + seq_errors:
+        for spec in known:
+            book.record(spec.name, sname, message)
+    layout = detect_layout(dataset_dir)
+    starts = {seq.name: _starts(seq, req.protocols, info.max_frames, layout) for seq in seqs}
+    parallel = req.scheduler is not None or req.workers > 1
+    tasks = _plan(book, known, seqs, tracker_options, probes, starts, parallel=parallel)
+    with Progress(len(tasks), sum(t.n_frames for t in tasks), req.progress) as bars:
+
+        def finish(task: PairTask, outcome: PairOutcome | None, failure: str | None) -> None:
+            book.finish(task, outcome, failure)
+            bars.pair_done(task)
+
+        run_tasks(tasks, finish, bars, workers=req.workers, scheduler=req.scheduler)
     return result
 
 

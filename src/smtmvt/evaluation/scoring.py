@@ -40,7 +40,7 @@ from .protocols import init_omit, pool_scores, segments
 from .rundir import RunDir, RunInfo
 from .trackers import UnknownTrackerError, tracker_spec
 
-__all__ = ["Summary", "score_run", "PROTOCOL", "PROTOCOL_NOTES"]
+__all__ = ["Summary", "score_run", "score_result", "PROTOCOL", "PROTOCOL_NOTES"]
 
 PROTOCOL = (
     "OTB OPE: IoU with inclusive pixel extents, success = IoU > t for t in 0:0.05:1, "
@@ -217,6 +217,14 @@ def _score_tracker(run, info, tracker, seqs, gts, repeat, how) -> tuple[dict[str
             continue
         runs[seq] = got
     return runs, problems
+
+
+def score_result(run: RunDir, tracker: str, sequence: str, repeat: int, gt: np.ndarray, invalid: str = "otb"):
+    """The :class:`~.metrics.SequenceScore` of one stored OPE result (``repeat`` 0-based), as
+    the report scores it. ``gt``: ``(n, 4)`` 0-based ground truth of the frames the run
+    covers (cut to ``run.json``'s ``max_frames``); ``invalid``: :func:`.metrics.score_sequence`'s
+    rule. ValueError naming the result file when it is missing, malformed or of another length."""
+    return _score_one(run, tracker, sequence, repeat, gt, 0, invalid)
 
 
 def _score_one(run: RunDir, tracker: str, seq: str, r: int, gt: np.ndarray, offset: int, invalid: str):
