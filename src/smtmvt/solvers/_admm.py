@@ -80,15 +80,7 @@ def admm_blocks(X, D, loss_prox, block_proxes, tol, max_iter, rho=2.0, beta=0.5,
         S = Minv @ (DX - DtR + DtUR + (beta / m) * a_sum)
         C = [ab + (S - a_sum) / m for ab in a]
         GS = G @ S
-        dr_sq = 0.0
-        DtUn = np.empty((K, N, n))
-        for k in range(K):
-            V = X[k] - D[k] @ S[k] + UR[k]
-            u_new = V - loss_prox(V, rho)
-            du = u_new - UR[k]
-            dr_sq += float(np.vdot(du, du))
-            UR[k] = u_new
-            DtUn[k] = D[k].T @ u_new
+        DtUn, dr_sq = _loss_step(X, D, S, UR, loss_prox, rho)
         DtR_new = DX - GS + DtUR - DtUn
         dDtR = DtR_new - DtR
         Z_new = [prox(Cb + Ub, 1.0 / (rho * beta)) for prox, Cb, Ub in zip(block_proxes, C, U)]
@@ -112,11 +104,25 @@ def admm_blocks(X, D, loss_prox, block_proxes, tol, max_iter, rho=2.0, beta=0.5,
         factor = penalty_factor(it, n_adapt, r_pri, eps_pri, r_dual, eps_dual) if adapt else 1.0
         if factor != 1.0:
             rho *= factor
-            U = [u / factor for u in U]
-            UR = [u / factor for u in UR]
-            DtUR = DtUR / factor
+            U, UR, DtUR = [u / factor for u in U], [u / factor for u in UR], DtUR / factor
             n_adapt += 1
     info = dict(
         iterations=it, converged=converged, primal_residual=float(r_pri), dual_residual=float(r_dual), rho=float(rho)
     )
     return Z, info
+
+
+def _loss_step(X, D, S, UR, loss_prox, rho):
+    """The loss block's step of :func:`admm_blocks`: for each view ``k``,
+    ``V = X_k - D_k S_k + U_R,k`` and ``U_R,k <- V - prox(V)`` (in place in the list
+    ``UR``); returns ``D' U_R`` ``(K, N, n)`` and the squared change of ``U_R`` (float)."""
+    dr_sq = 0.0
+    DtUn = np.empty(S.shape)
+    for k in range(len(X)):
+        V = X[k] - D[k] @ S[k] + UR[k]
+        u_new = V - loss_prox(V, rho)
+        du = u_new - UR[k]
+        dr_sq += float(np.vdot(du, du))
+        UR[k] = u_new
+        DtUn[k] = D[k].T @ u_new
+    return DtUn, dr_sq

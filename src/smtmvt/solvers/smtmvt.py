@@ -392,20 +392,7 @@ def _admm_batched(X, D, G, Minv, DX, state, rho, lam, gamma, beta, tol, max_iter
         # R step (Huber prox), written so that only U_R is stored:
         # V = X - DC + U_R, U_R_new = clip(2V/(2+rho)), R_new = V - U_R_new
         # (R itself is only needed through D'R, updated below).
-        c, th = 2.0 / (2.0 + rho), gamma / rho
-        neg_th = -th
-        dr_sq = np.zeros(len(live))
-        DtUn = np.empty_like(C)
-        for k in range(K):
-            v = D[k] @ C[k]
-            np.subtract(X[k], v, out=v)
-            v += UR[k]
-            v *= c
-            u_new = np.maximum(np.minimum(v, th, out=v), neg_th, out=v)  # clip (faster than np.clip)
-            du = u_new - UR[k]
-            dr_sq += np.einsum("ij,ij->j", du, du)
-            UR[k] = u_new
-            np.matmul(D[k].T, u_new, out=DtUn[k])
+        DtUn, dr_sq = _huber_step(X, D, C, UR, rho, gamma)
         DtR_new = DX - GC + DtUR - DtUn
         # Z steps
         tz = 1.0 / (rho * beta)
@@ -446,15 +433,40 @@ def _admm_batched(X, D, G, Minv, DX, state, rho, lam, gamma, beta, tol, max_iter
         # residual balancing on normalized residuals, early iterations only
         factor = penalty_factor(it, n_adapt, r_pri, eps_pri, r_dual, eps_dual)
         if np.any(factor != 1.0):
-            rho *= factor
-            U1 /= factor
-            U2 /= factor
-            for u in UR:
-                u /= factor
-            DtUR /= factor
+            _rescale(factor, rho, [U1, U2, DtUR, *UR])
             n_adapt += factor != 1.0
 
     return C_out, iterations, converged, r_pri_out, r_dual_out, rho_out
+
+
+def _huber_step(X, D, C, UR, rho, gamma):
+    """The R step of :func:`_admm_batched` (the Huber prox), written so that only ``U_R``
+    is stored: ``V = X - D C + U_R``, ``U_R <- clip(2 V / (2 + rho), +-gamma / rho)`` (in
+    place, each view's ``(d_k, n)``); returns ``D' U_R`` ``(K, N, n)`` and each candidate's
+    squared change of ``U_R`` ``(n,)``. ``R`` itself is only needed through ``D' R``."""
+    c, th = 2.0 / (2.0 + rho), gamma / rho
+    neg_th = -th
+    dr_sq = np.zeros(C.shape[2])
+    DtUn = np.empty_like(C)
+    for k in range(len(D)):
+        v = D[k] @ C[k]
+        np.subtract(X[k], v, out=v)
+        v += UR[k]
+        v *= c
+        u_new = np.maximum(np.minimum(v, th, out=v), neg_th, out=v)  # clip (faster than np.clip)
+        du = u_new - UR[k]
+        dr_sq += np.einsum("ij,ij->j", du, du)
+        UR[k] = u_new
+        np.matmul(D[k].T, u_new, out=DtUn[k])
+    return DtUn, dr_sq
+
+
+def _rescale(factor, rho, scaled) -> None:
+    """Residual balancing's change of penalty, in place: ``rho *= factor`` and each of
+    the ``scaled`` (scaled duals, their ``D'`` products) divided by it."""
+    rho *= factor
+    for u in scaled:
+        u /= factor
 
 
 def _col_sq(A: np.ndarray) -> np.ndarray:
