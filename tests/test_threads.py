@@ -70,3 +70,30 @@ def test_workers_keep_one_thread():
     assert TrackerConfig().threads is None
     with pytest.raises(ValueError, match="threads"):
         TrackerConfig(threads=0)
+
+
+def test_color_histograms_same_on_two_threads():
+    from smtmvt.features.color import _grid_histograms
+
+    rng = np.random.default_rng(3)
+    colors = rng.random((201, 12, 10, 3)).astype(np.float32)
+    with threads.limit(1):
+        one = _grid_histograms(colors, 2, 8)
+    with threads.limit(2):
+        two = _grid_histograms(colors, 2, 8)
+    assert np.array_equal(one, two)
+
+
+def test_run_blocks_covers_and_raises():
+    seen = []
+    with threads.limit(2) as n:
+        threads.run_blocks(lambda b: seen.append((b.start, b.stop)), 300, per=64)
+        assert sorted(seen) == ([(0, 150), (150, 300)] if n == 2 else [(0, 300)])
+
+        def fail(b):
+            if b.start:
+                raise RuntimeError("block")
+
+        if n == 2:
+            with pytest.raises(RuntimeError, match="block"):
+                threads.run_blocks(fail, 300, per=64)

@@ -2,8 +2,10 @@
 
 The coding's compiled kernel (:mod:`smtmvt.solvers._admm_kernel`) runs its
 per-candidate loops, and its products with each view's dictionary, on numba's
-threads; every candidate's arithmetic is the same for any number of threads,
-so the boxes are too (``tests/test_threads.py``).
+threads; a compiled feature kernel that treats each candidate on its own (the
+color view's histograms) runs on blocks of candidates, one per thread
+(:func:`run_blocks`). Every candidate's arithmetic is the same for any number
+of threads, so the boxes are too (``tests/test_threads.py``).
 
 ``threads=None`` (the default) means :func:`default_threads`: the
 ``SMTMVT_THREADS`` environment variable where set, else every core this
@@ -18,11 +20,12 @@ from __future__ import annotations
 import contextlib
 import os
 import threading
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from concurrent.futures import ThreadPoolExecutor
 
 import numba
 
-__all__ = ["ENV", "default_threads", "resolve", "set_default", "limit", "current"]
+__all__ = ["ENV", "default_threads", "resolve", "set_default", "limit", "current", "run_blocks"]
 
 #: The environment variable read by :func:`default_threads`.
 ENV = "SMTMVT_THREADS"
@@ -95,3 +98,36 @@ def limit(threads: int | None) -> Iterator[int]:
             numba.set_num_threads(pool)
     finally:
         _local.threads = before
+
+
+_pool: ThreadPoolExecutor | None = None
+_pool_key: tuple[int, int] = (0, 0)  # (process id, workers) of _pool
+
+
+def _executor(workers: int) -> ThreadPoolExecutor:
+    """The process's pool of at least ``workers`` threads (made again after a fork)."""
+    global _pool, _pool_key
+    if _pool is None or _pool_key[0] != os.getpid() or _pool_key[1] < workers:
+        _pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="smtmvt")
+        _pool_key = (os.getpid(), workers)
+    return _pool
+
+
+def run_blocks(fn: Callable[[slice], object], n: int, per: int = 64) -> None:
+    """``fn(block)`` for consecutive blocks of ``range(n)`` covering it, one per
+    thread of :func:`current` and at least ``per`` long (all of it in one call
+    on one thread): for a compiled kernel that releases the GIL and treats each
+    item on its own, writing its results in place. The first block runs in this
+    thread; an exception of any block is raised here."""
+    k = max(1, min(current(), n // max(1, per)))
+    if k == 1:
+        fn(slice(0, n))
+        return
+    cuts = [i * n // k for i in range(k + 1)]
+    blocks = [slice(a, b) for a, b in zip(cuts, cuts[1:])]
+    futures = [_executor(k - 1).submit(fn, b) for b in blocks[1:]]
+    try:
+        fn(blocks[0])
+    finally:
+        for f in futures:
+            f.result()

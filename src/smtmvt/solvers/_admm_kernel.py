@@ -400,4 +400,4 @@ _PRANGE_ONLY: Any = {  # (numba empties the dict it is given: a copy goes)
     "fusion": False,
     "prange": True,
 }
-_run_parallel = njit(cache=True, nogil=True, parallel=dict(_PRANGE_ONLY))(_named(_run_py, "_run_parallel"))
+_run_parallel = njit(cache=True, nogil=True, parallel=dict(_PRANGE_ONLY))(_named(_run_py, "_run_parallel"))  # type: ignore[call-overload]
