@@ -32,14 +32,27 @@ def test_solver_same_bits_on_two_threads():
     assert all(np.array_equal(a, b) for a, b in zip(E1, E2, strict=True))
 
 
-def test_tracker_same_boxes_on_one_and_two_threads():
-    # the paper's tracker codes all its particles: the threaded kernel runs every frame
-    seq = make_demo_sequence(n_frames=6)
+def test_tracker_same_boxes_on_one_and_two_threads(monkeypatch):
+    # prune_eps=0 codes every particle, so the threaded kernel runs every frame (the
+    # bounded coding's batches, tens of candidates, stay on one thread: PARALLEL_MIN)
+    from smtmvt.solvers import _admm_kernel
+
+    seq = make_demo_sequence(n_frames=4)
     boxes = {}
     for n in (1, 2):
-        tracker = Tracker(TrackerConfig.paper(seed=0, threads=n))
+        runs = {"parallel": 0}
+        parallel = _admm_kernel._run_parallel
+
+        def counted(*args, _parallel=parallel, _runs=runs):
+            _runs["parallel"] += 1
+            return _parallel(*args)
+
+        monkeypatch.setattr(_admm_kernel, "_run_parallel", counted)
+        config = TrackerConfig.paper(seed=0, threads=n, prune_eps=0.0, n_particles=2 * PARALLEL_MIN + 8)
+        tracker = Tracker(config)
         tracker.init(seq.frames[0], seq.groundtruth[0])
         boxes[n] = [tracker.update(f).box for f in seq.frames[1:]]
+        assert (runs["parallel"] > 0) == (threads.resolve(n) > 1)
     assert boxes[1] == boxes[2]
 
 
