@@ -87,6 +87,7 @@ DEFAULTS = {
     "histogram_power": 0.5,
     "deferred_views": ("coarse", "hog", "lbp"),
     "blas_threads": 1,
+    "threads": None,
     "seed": 0,
 }
 
@@ -259,12 +260,13 @@ REFUSED = {
     "intensity_factor": 0.0,
     "color_size": (1, 16),
     "blas_threads": 0,
+    "threads": 0,
     "seed": -1,
 }
 
 
 def test_every_field_has_a_refused_value_here():
-    assert set(REFUSED) == {*FLAT, "blas_threads", "seed"}
+    assert set(REFUSED) == {*FLAT, "blas_threads", "threads", "seed"}
 
 
 @pytest.mark.parametrize("name", sorted(REFUSED))

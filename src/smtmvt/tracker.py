@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections import defaultdict
-from contextlib import nullcontext
+from contextlib import contextmanager, nullcontext
 from functools import partial
 from typing import Any
 
@@ -44,6 +44,7 @@ from .results import FrameDetail, TrackResult, reshaped_box
 from .results import evidence as frame_evidence
 from .sampling import Sampler
 from .scale import ScaleFilter
+from .threads import limit as threads_limit
 from .timing import StageTimer
 from .warp import inside_fraction
 
@@ -81,10 +82,17 @@ class Tracker:
             raise RuntimeError("tracker not initialized")
         return (self._sparse, *self._others)
 
+    @contextmanager
     def _blas_limit(self):
-        if self._threadpools is None:
-            return nullcontext()
-        return self._threadpools.limit(limits=self.config.blas_threads, user_api="blas")
+        """The block with ``config.blas_threads`` BLAS threads and ``config.threads``
+        threads for the per-candidate work (:func:`smtmvt.threads.limit`)."""
+        blas = (
+            nullcontext()
+            if self._threadpools is None
+            else self._threadpools.limit(limits=self.config.blas_threads, user_api="blas")
+        )
+        with blas, threads_limit(self.config.threads):
+            yield
 
     def _timed(self, stage: str):
         """A block of ``stage`` timed in :attr:`timings` (:meth:`StageTimer.timed`)."""

@@ -83,7 +83,7 @@ FLAT: dict[str, tuple[str, str]] = {
     flat_name(f): (g, f.name) for g, cls in GROUPS.items() for f in dataclasses.fields(cls)
 }
 #: The fields of the run, not of a stage, and their checks.
-_RUN = {"blas_threads": Whole(1, 1_024, none=True), "seed": Whole(0, none=True)}
+_RUN = {"blas_threads": Whole(1, 1_024, none=True), "threads": Whole(1, 1_024, none=True), "seed": Whole(0, none=True)}
 assert len(FLAT) == sum(len(dataclasses.fields(c)) for c in GROUPS.values())  # unique flat names
 assert not set(FLAT) & {*_RUN, *GROUPS, *dir(object)}
 
@@ -126,6 +126,11 @@ class TrackerConfig:
         Options measured and not kept, each off by default; they may go.
     blas_threads : a whole number from 1 to 1024 or None; default 1
         BLAS threads in the tracker, None: as set outside (docs/experiments.md#f-blas_threads).
+    threads : a whole number from 1 to 1024 or None; default None
+        Threads for the per-candidate work (the coding's per-candidate loops,
+        :mod:`smtmvt.threads`); None: all the cores this process may use, or
+        ``SMTMVT_THREADS`` where set (``smtmvt evaluate``'s workers set 1). The boxes
+        are the same for every number of threads.
     seed : a whole number >= 0 or None; default 0
         Seed of the particle filter's random generator: the same seed gives the same boxes.
 
@@ -160,6 +165,7 @@ class TrackerConfig:
     report: ReportConfig
     experimental: ExperimentalConfig
     blas_threads: int | None
+    threads: int | None
     seed: int | None
 
     def __init__(
@@ -174,6 +180,7 @@ class TrackerConfig:
         report: ReportConfig | Mapping | None = None,
         experimental: ExperimentalConfig | Mapping | None = None,
         blas_threads: int | None = 1,
+        threads: int | None = None,
         seed: int | None = 0,
         **flat: Any,
     ) -> None:
@@ -199,7 +206,7 @@ class TrackerConfig:
         # field's cost (through __getattr__ a read costs ten times as much).
         for key, (name, field) in FLAT.items():
             object.__setattr__(self, key, getattr(getattr(self, name), field))
-        for key, value in (("blas_threads", blas_threads), ("seed", seed)):
+        for key, value in (("blas_threads", blas_threads), ("threads", threads), ("seed", seed)):
             try:
                 object.__setattr__(self, key, _RUN[key](value))
             except CheckError as exc:
@@ -233,10 +240,10 @@ class TrackerConfig:
         return type(self)(**kept)
 
     def to_flat(self) -> dict[str, Any]:
-        """Every field by its flat name, in the groups' order, then ``blas_threads`` and ``seed``:
+        """Every field by its flat name, in the groups' order, then ``blas_threads``, ``threads`` and ``seed``:
         ``TrackerConfig(**cfg.to_flat()) == cfg``; what ``run.json`` records."""
         values = {key: getattr(getattr(self, name), field) for key, (name, field) in FLAT.items()}
-        return {**values, "blas_threads": self.blas_threads, "seed": self.seed}
+        return {**values, "blas_threads": self.blas_threads, "threads": self.threads, "seed": self.seed}
 
     @classmethod
     def paper(cls, **changes: Any) -> TrackerConfig:

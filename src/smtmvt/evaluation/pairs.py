@@ -43,7 +43,9 @@ class PairTask:
     ``fresh_process``: run it in a new Python process (see :class:`~.trackers.TrackerSpec`).
     ``part``: ``(protocol, segment)`` of a TRE or SRE run, None for OPE; ``start``: its
     0-based first frame; ``init_box``: its 0-based start box (None: frame 0's ground
-    truth). ``n_frames`` counts from ``start``.
+    truth). ``n_frames`` counts from ``start``. ``single_thread``: the pair runs among
+    others (a pool or Dask worker): one OpenCV thread, and ``TrackerConfig.threads=None``
+    means one thread (:func:`smtmvt.threads.set_default`).
     """
 
     tracker: str
@@ -120,6 +122,9 @@ def run_pair(task: PairTask, on_frame: Callable[[int], None] | None = None) -> P
     t_start = time.perf_counter()
     out = PairOutcome(task.tracker, seq.name, task.n_frames)
     if task.single_thread:
+        from ..threads import set_default
+
+        set_default(1)  # TrackerConfig.threads=None: one thread per worker (a tracker option may say more)
         with contextlib.suppress(Exception):
             import cv2
 

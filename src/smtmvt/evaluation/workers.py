@@ -9,7 +9,8 @@ Guarantees
   into :class:`KeyboardInterrupt` by the CLI), the pool terminates its workers before the
   exception goes on.
 * **The same boxes wherever a pair runs.** Workers use one OpenCV/BLAS thread each (like
-  Dask's); a ``fresh_process`` pair runs in a new interpreter started with
+  Dask's) and one thread for the tracker's per-candidate work unless a tracker option sets
+  ``threads`` (the boxes are the same for any number); a ``fresh_process`` pair runs in a new interpreter started with
   ``subprocess`` (which Dask's daemonic workers may also start), so state a tracker keeps
   outside its seed cannot leak from one pair to the next.
 * Only the driver writes to the run folder: workers return :class:`~.pairs.PairOutcome`.
@@ -37,8 +38,10 @@ from .pairs import PairOutcome, PairTask, describe, run_pair
 
 __all__ = ["execute", "run_tasks", "exit_with_parent", "probe_scheduler", "WORKER_ENV"]
 
-#: Thread caps for worker processes (the same as Dask's nanny sets for its workers).
-WORKER_ENV = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1"}
+#: Thread caps for worker processes (the same as Dask's nanny sets for its workers), and
+#: one thread for the tracker's per-candidate work (``TrackerConfig.threads=None``,
+#: :mod:`smtmvt.threads`): workers and threads do not oversubscribe the cores.
+WORKER_ENV = {"OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "SMTMVT_THREADS": "1"}
 _FRAME_REPORT_S = 0.5  # a pool worker reports frames done at most this often
 #: seconds a Dask scheduler's address has to accept a connection and greet it
 SCHEDULER_PROBE_S = 5.0

@@ -34,6 +34,7 @@ import functools
 import numpy as np
 from numba import njit
 
+from ..threads import run_blocks
 from .cells import cell_map
 
 __all__ = ["histogram_power", "COLOR_BINS", "color_histograms", "color_view", "soft_binning_matrix"]
@@ -153,7 +154,11 @@ def _grid_histograms(colors: np.ndarray, grid: int, bins: int) -> np.ndarray:
     row_of_value, lo, w_lo, hi, w_hi, area_of_row = _grid_layout(h, w, c, grid, bins)
     hist = np.zeros((n, bins, grid * grid * c))
     flat = np.ascontiguousarray(colors, dtype=np.float32).reshape(n, h * w * c)
-    _cell_histograms(flat, row_of_value, lo, w_lo, hi, w_hi, hist)
+
+    def block(b: slice) -> None:  # each patch on its own: blocks on threads (smtmvt.threads)
+        _cell_histograms(flat[b], row_of_value, lo, w_lo, hi, w_hi, hist[b])
+
+    run_blocks(block, n)
     return _divided(hist, area_of_row, np.empty((n, grid * grid * c * bins), dtype=np.float32))
 
 

@@ -18,16 +18,36 @@ Layouts (prepared by :func:`run_candidates`): the K dictionaries stacked as
 one ``(d, N)`` array, the candidates' views and residual duals as one
 ``(d, n)`` array each (view k in rows ``off[k]:off[k+1]``), the per-candidate
 blocks as ``(K, N, n)``.
+
+Threads (``TrackerConfig.threads``, :func:`smtmvt.threads.current`): one
+kernel source compiled twice, ``_run`` (one thread, ``prange`` is ``range``)
+and ``_run_parallel`` (numba's threads run the ``prange`` loops only). Each
+iteration runs the views in parallel (each view's products are the same whole
+BLAS calls as on one thread) and then blocks of candidates (each candidate's
+sums in the one-thread order), so the results are bit for bit the same for
+any number of threads (``tests/test_threads.py``). Splitting the candidates
+into batches instead would not be: a BLAS product's last bits depend on the
+batch's width. A batch of fewer than ``2 * PARALLEL_MIN`` candidates runs on
+one thread.
 """
 
 from __future__ import annotations
 
-import numpy as np
-from numba import njit
+import types
+from typing import Any
 
+import numpy as np
+from numba import njit, prange
+
+from ..threads import current as current_threads
 from ._admm_rules import ABS_FLOOR, ADAPT_EVERY, ADAPT_MAX, ADAPT_RATIO, ADAPT_UNTIL
 
-__all__ = ["run_candidates", "symmetric_eigen"]
+__all__ = ["run_candidates", "symmetric_eigen", "PARALLEL_MIN"]
+
+#: Candidates per thread below which a batch is solved on one thread: each
+#: iteration of the threaded kernel waits for its threads twice, which a small
+#: batch (the bounded coding's, tens of candidates) does not repay.
+PARALLEL_MIN = 64
 
 
 def run_candidates(X, D, G, Minv, DX, state, rho, lam, gamma, beta, tol, max_iter):
@@ -42,6 +62,9 @@ def run_candidates(X, D, G, Minv, DX, state, rho, lam, gamma, beta, tol, max_ite
         ``(K, N, n)`` and ``UR`` (list of K ``(d_k, n)``); not modified.
     rho : ``(n,)`` starting penalties.
 
+    Threads: :func:`smtmvt.threads.current`'s (1 outside a tracker), at most
+    one per ``PARALLEL_MIN`` candidates.
+
     Returns ``(C, iterations, converged, r_pri, r_dual, rho)``: ``C (K, N, n)``
     (each candidate's final ``Z2``), and per candidate the iterations run,
     whether the stopping rule was met, the last residuals and the final penalty.
@@ -54,7 +77,10 @@ def run_candidates(X, D, G, Minv, DX, state, rho, lam, gamma, beta, tol, max_ite
     def block(A):
         return np.array(A, dtype=np.float64, order="C")  # a copy: the kernel updates it in place
 
-    return _run(
+    n = X[0].shape[1]
+    chunks = max(1, min(current_threads(), n // PARALLEL_MIN))
+    run = _run if chunks == 1 else _run_parallel
+    return run(
         rows(D),
         off,
         rows(X),
@@ -74,6 +100,7 @@ def run_candidates(X, D, G, Minv, DX, state, rho, lam, gamma, beta, tol, max_ite
         float(beta),
         float(tol),
         int(max_iter),
+        chunks,
     )
 
 
@@ -199,8 +226,7 @@ def _keep_blocks(A, keep):
     return out
 
 
-@njit(cache=True, nogil=True)
-def _run(Dcat, off, X, UR, G, Minv, DX, Z1, Z2, U1, U2, DtUR, DtR, rho, lam, gamma, beta, tol, max_iter):
+def _run_py(Dcat, off, X, UR, G, Minv, DX, Z1, Z2, U1, U2, DtUR, DtR, rho, lam, gamma, beta, tol, max_iter, chunks):
     K, N, n = DX.shape
     d = X.shape[0]
     m_gram = min(N, K)
@@ -214,17 +240,20 @@ def _run(Dcat, off, X, UR, G, Minv, DX, Z1, Z2, U1, U2, DtUR, DtR, rho, lam, gam
     live = np.arange(n)
     open_ = np.ones(n, dtype=np.bool_)
     n_adapt = np.zeros(n, dtype=np.int64)
-    P = np.empty((N, K))
-    S = np.empty((N, K))
-    Mw = np.empty((m_gram, m_gram))
-    Vw = np.empty((m_gram, m_gram))
     for it in range(1, max_iter + 1):
         m = live.shape[0]
-        # C step: (D'D + 2 beta I) C = D'(X - R + U_R) + beta (Z1 - U1 + Z2 - U2)
+        # One view per thread (its products with its dictionary, whole BLAS calls as with
+        # one thread): the C step (D'D + 2 beta I) C = D'(X - R + U_R) + beta (Z1 - U1 + Z2 - U2),
+        # the R step (Huber prox) on U_R only, then D'U_R.
         C = np.empty((K, N, m))
         GC = np.empty((K, N, m))
-        rhs = np.empty((N, m))
-        for k in range(K):
+        DtUn = np.empty((K, N, m))
+        du_sq = np.empty((d, m))  # each change of U_R squared, summed per candidate below
+        shrink = 2.0 / (2.0 + rho)
+        th = gamma / rho
+        for k in prange(K):
+            a, b = off[k], off[k + 1]
+            rhs = np.empty((N, m))
             for t in range(N):
                 for j in range(m):
                     rhs[t, j] = (
@@ -235,19 +264,12 @@ def _run(Dcat, off, X, UR, G, Minv, DX, Z1, Z2, U1, U2, DtUR, DtR, rho, lam, gam
                     )
             C[k] = np.dot(Minv[k], rhs)
             GC[k] = np.dot(G[k], C[k])
-        # R step (Huber prox), on U_R only; then D'U_R
-        dr_sq = np.zeros(m)
-        DtUn = np.empty((K, N, m))
-        shrink = 2.0 / (2.0 + rho)
-        th = gamma / rho
-        for k in range(K):
-            a, b = off[k], off[k + 1]
             V = np.dot(Dcat[a:b], C[k])
             for r in range(b - a):
                 for j in range(m):
                     u = min(max(shrink[j] * (X[a + r, j] - V[r, j] + UR[a + r, j]), -th[j]), th[j])
                     du = u - UR[a + r, j]
-                    dr_sq[j] += du * du
+                    du_sq[a + r, j] = du * du
                     UR[a + r, j] = u
             DtUn[k] = np.dot(Dcat[a:b].T, UR[a:b])
         # Z steps, duals, and each candidate's residuals and scales
@@ -255,45 +277,53 @@ def _run(Dcat, off, X, UR, G, Minv, DX, Z1, Z2, U1, U2, DtUR, DtR, rho, lam, gam
         r_dual = np.empty(m)
         eps_pri = np.empty(m)
         eps_dual = np.empty(m)
-        for j in range(m):
-            tz = 1.0 / (rho[j] * beta)
-            for k in range(K):
-                for t in range(N):
-                    P[t, k] = C[k, t, j] + U1[k, t, j]
-            _svt(P, lam * tz, S, Mw, Vw)
-            cgc = sq_d1 = sq_d2 = sq_c = sq_z1 = sq_z2 = sq_dual = sq_u1 = sq_u2 = sq_dtur = 0.0
-            for k in range(K):
-                for t in range(N):
-                    c_ = C[k, t, j]
-                    cgc += c_ * GC[k, t, j]
-                    dtr_new = DX[k, t, j] - GC[k, t, j] + DtUR[k, t, j] - DtUn[k, t, j]
-                    z1n = S[t, k]
-                    z2n = max(c_ + U2[k, t, j] - gamma * tz, 0.0)
-                    d1 = c_ - z1n
-                    d2 = c_ - z2n
-                    U1[k, t, j] += d1
-                    U2[k, t, j] += d2
-                    sq_d1 += d1 * d1
-                    sq_d2 += d2 * d2
-                    sq_c += c_ * c_
-                    sq_z1 += z1n * z1n
-                    sq_z2 += z2n * z2n
-                    e = (dtr_new - DtR[k, t, j]) + beta * ((z1n - Z1[k, t, j]) + (z2n - Z2[k, t, j]))
-                    sq_dual += e * e
-                    Z1[k, t, j] = z1n
-                    Z2[k, t, j] = z2n
-                    DtR[k, t, j] = dtr_new
-                    DtUR[k, t, j] = DtUn[k, t, j]
-                    sq_u1 += U1[k, t, j] * U1[k, t, j]
-                    sq_u2 += U2[k, t, j] * U2[k, t, j]
-                    sq_dtur += DtUn[k, t, j] * DtUn[k, t, j]
-            r_pri[j] = np.sqrt(dr_sq[j] + beta * (sq_d1 + sq_d2))
-            r_dual[j] = rho[j] * np.sqrt(sq_dual)
-            ax = np.sqrt(max(cgc, 0.0) + 2.0 * beta * sq_c)
-            bz = np.sqrt(beta * (sq_z1 + sq_z2))
-            scale_dual = rho[j] * np.sqrt(max(sq_dtur, beta**2 * max(sq_u1, sq_u2)))
-            eps_pri[j] = tol * max(max(ax, bz), x_norm[live[j]]) + ABS_FLOOR
-            eps_dual[j] = tol * scale_dual + ABS_FLOOR
+        for c in prange(chunks):  # one block of candidates per thread, with its work arrays
+            P = np.empty((N, K))
+            S = np.empty((N, K))
+            Mw = np.empty((m_gram, m_gram))
+            Vw = np.empty((m_gram, m_gram))
+            for j in range(c * m // chunks, (c + 1) * m // chunks):
+                dr_sq = 0.0  # in the order (view, row), as one thread adds them
+                for r in range(d):
+                    dr_sq += du_sq[r, j]
+                tz = 1.0 / (rho[j] * beta)
+                for k in range(K):
+                    for t in range(N):
+                        P[t, k] = C[k, t, j] + U1[k, t, j]
+                _svt(P, lam * tz, S, Mw, Vw)
+                cgc = sq_d1 = sq_d2 = sq_c = sq_z1 = sq_z2 = sq_dual = sq_u1 = sq_u2 = sq_dtur = 0.0
+                for k in range(K):
+                    for t in range(N):
+                        c_ = C[k, t, j]
+                        cgc += c_ * GC[k, t, j]
+                        dtr_new = DX[k, t, j] - GC[k, t, j] + DtUR[k, t, j] - DtUn[k, t, j]
+                        z1n = S[t, k]
+                        z2n = max(c_ + U2[k, t, j] - gamma * tz, 0.0)
+                        d1 = c_ - z1n
+                        d2 = c_ - z2n
+                        U1[k, t, j] += d1
+                        U2[k, t, j] += d2
+                        sq_d1 += d1 * d1
+                        sq_d2 += d2 * d2
+                        sq_c += c_ * c_
+                        sq_z1 += z1n * z1n
+                        sq_z2 += z2n * z2n
+                        e = (dtr_new - DtR[k, t, j]) + beta * ((z1n - Z1[k, t, j]) + (z2n - Z2[k, t, j]))
+                        sq_dual += e * e
+                        Z1[k, t, j] = z1n
+                        Z2[k, t, j] = z2n
+                        DtR[k, t, j] = dtr_new
+                        DtUR[k, t, j] = DtUn[k, t, j]
+                        sq_u1 += U1[k, t, j] * U1[k, t, j]
+                        sq_u2 += U2[k, t, j] * U2[k, t, j]
+                        sq_dtur += DtUn[k, t, j] * DtUn[k, t, j]
+                r_pri[j] = np.sqrt(dr_sq + beta * (sq_d1 + sq_d2))
+                r_dual[j] = rho[j] * np.sqrt(sq_dual)
+                ax = np.sqrt(max(cgc, 0.0) + 2.0 * beta * sq_c)
+                bz = np.sqrt(beta * (sq_z1 + sq_z2))
+                scale_dual = rho[j] * np.sqrt(max(sq_dtur, beta**2 * max(sq_u1, sq_u2)))
+                eps_pri[j] = tol * max(max(ax, bz), x_norm[live[j]]) + ABS_FLOOR
+                eps_dual[j] = tol * scale_dual + ABS_FLOOR
         # finished candidates: record their result
         n_open = 0
         for j in range(m):
@@ -344,3 +374,30 @@ def _run(Dcat, off, X, UR, G, Minv, DX, Z1, Z2, U1, U2, DtUR, DtR, rho, lam, gam
                     UR[r, j] /= factor
                 n_adapt[j] += 1
     return C_out, iterations, converged, r_pri_out, r_dual_out, rho_out
+
+
+def _named(fn, name: str):
+    """``fn`` as a new function named ``name`` (numba names its cache files after a
+    function's qualified name: two dispatchers of one function would share them)."""
+    out = types.FunctionType(fn.__code__, fn.__globals__, name, fn.__defaults__, fn.__closure__)
+    out.__qualname__ = name
+    return out
+
+
+#: One thread: ``prange`` is ``range``.
+_run = njit(cache=True, nogil=True)(_named(_run_py, "_run"))
+#: Several: only the ``prange`` loops (over candidates, or blocks of them) run in
+#: parallel; numba's own parallelization of array expressions stays off (its
+#: reductions would sum in another order), so every candidate's arithmetic is
+#: the one-thread kernel's, whatever the number of threads.
+_PRANGE_ONLY: Any = {  # (numba empties the dict it is given: a copy goes)
+    "comprehension": False,
+    "reduction": False,
+    "inplace_binop": False,
+    "setitem": False,
+    "numpy": False,
+    "stencil": False,
+    "fusion": False,
+    "prange": True,
+}
+_run_parallel = njit(cache=True, nogil=True, parallel=dict(_PRANGE_ONLY))(_named(_run_py, "_run_parallel"))  # type: ignore[call-overload]
