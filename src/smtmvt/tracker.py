@@ -86,11 +86,8 @@ class Tracker:
     def _blas_limit(self):
         """The block with ``config.blas_threads`` BLAS threads and ``config.threads``
         threads for the per-candidate work (:func:`smtmvt.threads.limit`)."""
-        blas = (
-            nullcontext()
-            if self._threadpools is None
-            else self._threadpools.limit(limits=self.config.blas_threads, user_api="blas")
-        )
+        pools = self._threadpools
+        blas = nullcontext() if pools is None else pools.limit(limits=self.config.blas_threads, user_api="blas")
         with blas, threads_limit(self.config.threads):
             yield
 
