@@ -53,6 +53,8 @@ DEFAULTS = {
     "template_learn_floor": 0.4,
     "correlation_rate": 0.02,
     "correlation_first": 0.0,
+    "correlation_augment": False,
+    "template_augment": False,
     "correlation_usual_peak": True,  # the default since stop 46 (docs/experiments.md#n47)
     "redetect_after": 10,
     "motion_weight": 1.0,
@@ -251,6 +253,8 @@ REFUSED = {
     "background_samples": 0,
     "background_measure": "farthest",
     "correlation_first": 2.0,
+    "correlation_augment": 0,
+    "template_augment": 0,
     "scale_push": -1.0,
     "scale_filter": 1.5,
     "anchor_cos": -2.0,

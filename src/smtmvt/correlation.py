@@ -77,6 +77,10 @@ __all__ = [
     "cell_features",
     "gray_part",
     "gaussian_label",
+    "AUGMENT_COPIES",
+    "AUGMENT_SPREAD",
+    "augment_warps",
+    "augmented_features",
     "Filter",
     "train",
     "blend",
@@ -104,6 +108,11 @@ LEARNING_RATE = 0.02
 REGULARIZATION = 1e-2
 #: Standard deviation of the label's peak, as a fraction of the box's square root of area (KCF's 0.1).
 LABEL_SIGMA = 0.1
+#: Perturbed copies of the first window the filter may also learn from (MOSSE's 8).
+AUGMENT_COPIES = 8
+#: Half-width of the uniform perturbations: rotation, radians, and each entry of the
+#: 2 x 2 warp (MOSSE's ``rand_warp``, OpenCV's ``TrackerMOSSE``: 0.1).
+AUGMENT_SPREAD = 0.1
 
 
 @dataclass(frozen=True)
@@ -255,6 +264,38 @@ def gaussian_label(cells_shape, box_cells: float) -> np.ndarray:
     return np.exp(-0.5 * (v[:, None] ** 2 + u[None, :] ** 2) / sigma**2)
 
 
+def augment_warps(n: int, seed: int | None) -> np.ndarray:
+    """``n`` random small affine warps ``(n, 2, 2)`` float64, MOSSE's first-frame
+    perturbations (Bolme et al., CVPR 2010, sec. 3.1; OpenCV's ``TrackerMOSSE``
+    ``rand_warp``): a rotation by ``t ~ U(-0.1, 0.1)`` radians with each entry
+    then moved by ``U(-0.1, 0.1)`` (scale, aspect and shear changes of up to
+    about 10 %), ``AUGMENT_SPREAD`` both. Drawn from a generator of ``seed``
+    (None: fresh entropy), so the same ``seed`` gives the same warps."""
+    rng = np.random.default_rng(seed)
+    c = AUGMENT_SPREAD
+    t = rng.uniform(-c, c, size=n)
+    rot = np.stack([np.cos(t), -np.sin(t), np.sin(t), np.cos(t)], axis=1).reshape(n, 2, 2)
+    return rot + rng.uniform(-c, c, size=(n, 2, 2))
+
+
+def augmented_features(frame: np.ndarray, window: Window, warps: np.ndarray) -> np.ndarray:
+    """Cell features ``(n, C, h, w)`` float32 of the window's gray image
+    warped about the window's centre by each of ``warps`` ``(n, 2, 2)`` (window
+    pixels to window pixels; the window's border reflected, as MOSSE's),
+    each times the Hann window as :func:`window_features`'s. A warp of the
+    identity gives :func:`window_features` (up to the border)."""
+    img = _resample(frame, window)
+    H, W = img.shape
+    centre = np.array([(W - 1) / 2.0, (H - 1) / 2.0])
+    hann = _hann((H // CELL, W // CELL))[None]
+    out = []
+    for a in np.asarray(warps, dtype=np.float64).reshape(-1, 2, 2):
+        M = np.concatenate([a, (centre - a @ centre)[:, None]], axis=1)
+        warped = cv2.warpAffine(img, M, (W, H), flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_REFLECT)
+        out.append(cell_features(warped) * hann)
+    return np.stack(out) if out else np.zeros((0, ORIENTATIONS + 1, H // CELL, W // CELL), np.float32)
+
+
 @dataclass(frozen=True)
 class Filter:
     """A multi-channel correlation filter in the Fourier domain: numerator
@@ -268,10 +309,15 @@ class Filter:
 def train(features: np.ndarray, label: np.ndarray) -> Filter:
     """The filter whose correlation with ``features`` ``(C, h, w)`` is ``label``
     ``(h, w)`` (up to the ridge term): ``A_c = conj(G) F_c``,
-    ``B = sum_c |F_c|^2``."""
+    ``B = sum_c |F_c|^2``. Given samples ``(n, C, h, w)``, the filter of all of
+    them with the same label (MOSSE's): ``A`` and ``B`` their means."""
     F = np.fft.fft2(features, axes=(-2, -1))
     G = np.fft.fft2(label)
-    return Filter(np.conj(G)[None] * F, np.sum(np.abs(F) ** 2, axis=0))
+    A = np.conj(G)[None] * F
+    B = np.sum(np.abs(F) ** 2, axis=-3)
+    if F.ndim == 4:
+        A, B = A.mean(axis=0), B.mean(axis=0)
+    return Filter(A, B)
 
 
 def blend(model: Filter, new: Filter, rate: float) -> Filter:
@@ -381,12 +427,21 @@ class CorrelationFilter:
     ``(x + (w - 1) / 2, y + (h - 1) / 2)`` (:func:`smtmvt.geometry.box_to_affine`'s).
     """
 
-    def __init__(self, frame: np.ndarray, box) -> None:
+    def __init__(self, frame: np.ndarray, box, augment: int = 0, seed: int | None = None) -> None:
+        """``augment`` : the first model also learns from this many perturbed
+        copies of the first window (:func:`augment_warps` of ``seed``,
+        :func:`augmented_features`), the first window itself one sample among
+        ``augment + 1`` (MOSSE's initialisation; ``AUGMENT_COPIES`` there); 0:
+        the first window only. :attr:`first` is that model too."""
         b = np.asarray(box, dtype=np.float64)
         self.size = window_shape(b)
         h, w = self.size[0] // CELL, self.size[1] // CELL
         self._label = gaussian_label((h, w), BOX_PIXELS / CELL)
-        self.model = train(self._features(frame, b), self._label)
+        features = self._features(frame, b)
+        if augment > 0:
+            copies = augmented_features(frame, self._window(b), augment_warps(augment, seed))
+            features = np.concatenate([features[None], copies], axis=0)
+        self.model = train(features, self._label)
         #: the filter of the first box, never updated (:meth:`response`'s ``first``)
         self.first = self.model
         #: (peak, APCE) of each response judged by :meth:`judge`

@@ -304,6 +304,16 @@ class ExperimentalConfig(Group):
     correlation_first: float = option(
         0.0, Real(0, 1), "Share of the first box's filter in the correlation response (docs/experiments.md#n36)."
     )
+    correlation_augment: bool = option(
+        False,
+        Flag(),
+        "The first filter also learns from MOSSE's 8 perturbed copies of the first window\n(issue 48 item 4).",
+    )
+    template_augment: bool = option(
+        False,
+        Flag(),
+        "Templates 1.. are MOSSE's perturbations of the first box, not corner jitter\n(issue 48 item 4).",
+    )
     scale_push: float = option(
         0.0, Real(ge=0), "Weight of ``-log(s_i / s)``, toward larger boxes (docs/experiments.md#n42)."
     )

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..correlation import CELL, CorrelationFilter, apce, clears, correlation_cost, peak_point
+from ..correlation import AUGMENT_COPIES, CELL, CorrelationFilter, apce, clears, correlation_cost, peak_point
 from ..geometry import affine_to_box, box_to_affine
 from ..motion import place
 from .base import Choice, Cue, Scene, Start
@@ -56,7 +56,9 @@ class CorrelationCue(Cue):
 
     def start(self, start: Start) -> None:
         # on the frame as given (not the working frame)
-        self.filter = CorrelationFilter(start.frame, start.box)
+        augment = AUGMENT_COPIES if self.config.correlation_augment else 0
+        seed = None if self.config.seed is None else self.config.seed + 2  # not the tracker's nor the templates'
+        self.filter = CorrelationFilter(start.frame, start.box, augment, seed)
         self.scale = start.sampler.scale
         self.last_learned = start.state.copy()
 

@@ -24,6 +24,7 @@ import functools
 
 import numpy as np
 
+from ..correlation import augment_warps
 from ..geometry import affine_to_box, box_to_affine
 from ..likelihood import Observation, observe
 from ..solvers import BOUNDED_CODING, SOLVERS, solve_smtmvt
@@ -40,12 +41,23 @@ UPDATE_FLOOR_FRAMES = 10
 TEMPLATE_JITTER = 0.6
 
 
-def template_states(state: np.ndarray, n: int, seed: int | None) -> np.ndarray:
+def template_states(state: np.ndarray, n: int, seed: int | None, augment: bool = False) -> np.ndarray:
     """The ``n`` template states ``(n, 6)``: the exact ``state`` ``(6,)``, then
     ``n - 1`` copies whose box corners are moved by about N(0, 0.6^2) pixels
-    (drawn from a generator of ``seed + 1``, not the tracker's)."""
-    rng = np.random.default_rng(None if seed is None else seed + 1)
+    (drawn from a generator of ``seed + 1``, not the tracker's).
+
+    ``augment`` (``config.template_augment``): the copies are instead the state
+    warped about its centre by MOSSE's first-frame perturbations
+    (:func:`smtmvt.correlation.augment_warps` of ``seed + 1``: a rotation of up
+    to 0.1 radian, each entry of the 2 x 2 warp then moved by up to 0.1),
+    ``A' = W A`` on the state's 2 x 2 part, its centre kept."""
     states = np.repeat(state[None], n, axis=0)
+    if n > 1 and augment:
+        warps = augment_warps(n - 1, None if seed is None else seed + 1)
+        a = np.asarray(state[:4], dtype=np.float64).reshape(2, 2)
+        states[1:, :4] = (warps @ a).reshape(n - 1, 4)
+        return states
+    rng = np.random.default_rng(None if seed is None else seed + 1)
     if n > 1:
         x, y, w, h = affine_to_box(state)
         jit = rng.normal(0.0, TEMPLATE_JITTER, size=(n - 1, 4))
@@ -120,7 +132,7 @@ class SparseCue(Cue):
 
     def start(self, start: Start) -> None:
         cfg, sampler = self.config, start.sampler
-        states = template_states(start.state, cfg.n_templates, cfg.seed)
+        states = template_states(start.state, cfg.n_templates, cfg.seed, cfg.template_augment)
         prepared = start.prepared
         if sampler.crop and not cfg.crop_refresh:  # the templates' planes as every later frame's
             channels = prepared.color.shape[2]
