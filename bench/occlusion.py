@@ -41,7 +41,9 @@ from scipy import ndimage
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
-from smtmvt import Tracker, TrackerConfig, open_sequence
+from boxes_md5 import config_of  # a script beside this one: bench/ is on the path
+
+from smtmvt import Tracker, open_sequence
 from smtmvt.demo import make_demo_sequence
 
 #: L1-APG's structuring element for closing the outlier map (a 3x3 cross).
@@ -59,10 +61,6 @@ def largest_closed_blob(e: np.ndarray, shape: tuple[int, int]) -> float:
     mask = ndimage.binary_erosion(ndimage.binary_dilation(mask, CROSS), CROSS)[1:-1, 1:-1]
     labels, n = ndimage.label(mask, structure=np.ones((3, 3), dtype=bool))
     return 0.0 if n == 0 else float(np.bincount(labels.ravel())[1:].max() / mask.size)
-
-
-def config_of(name: str, seed: int) -> TrackerConfig:
-    return TrackerConfig.paper(seed=seed) if name == "paper" else TrackerConfig(seed=seed)
 
 
 def track_outliers(tracker: Tracker, frames, box) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

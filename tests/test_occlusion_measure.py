@@ -2,6 +2,7 @@
 occluded share against its own geometry."""
 
 import importlib.util
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -11,6 +12,7 @@ from skimage import measure, morphology
 from smtmvt.demo import make_demo_sequence
 
 _BENCH = Path(__file__).resolve().parents[1] / "bench"
+sys.path.insert(0, str(_BENCH))  # occlusion.py imports boxes_md5.py beside it
 _spec = importlib.util.spec_from_file_location("occlusion", _BENCH / "occlusion.py")
 assert _spec is not None and _spec.loader is not None
 occlusion = importlib.util.module_from_spec(_spec)
