@@ -40,6 +40,7 @@ from .geometry import affine_scale, affine_to_box, box_inside_fraction, box_to_a
 from .likelihood import Observation
 from .particles import ParticleFilter
 from .preprocess import PreparedFrame, check_same_size
+from .reliability import Reliability, Scaled
 from .results import FrameDetail, TrackResult, reshaped_box
 from .results import evidence as frame_evidence
 from .sampling import Sampler
@@ -204,6 +205,8 @@ class Tracker:
         self._n_first = self._sparse.first_views(cues)
         self._lost = 0  # frames in a row the target seemed lost (config.redetect_after)
         self._costs: list[float] = []  # the chosen candidates' costs (TrackResult.confidence)
+        self._reliability = Reliability(len(self._others)) if cfg.cue_reliability else None
+        self._frame_costs: list = []  # this frame's costs of the other cues, before reliability
         self._initialized = True
 
     # -- the working frame (config.frame_size) and its planes -----------------
@@ -311,9 +314,16 @@ class Tracker:
         """Score: each cue's cost summed in the cues' order (a cue off adds
         nothing), then the sparse cue's bounded coding with that sum as offset."""
         with self._timed("likelihood"):
+            costs = [cue.cost(scene) for cue in self._others]
+            others: list = self._others
             offset = None
-            for cue in self._others:
-                cost = cue.cost(scene)
+            if self._reliability is not None:
+                # each cue's cost times its reliability (config.cue_reliability)
+                self._frame_costs = costs
+                factors = self._reliability.factors()
+                costs = [None if c is None else c * f for c, f in zip(costs, factors)]
+                others = [Scaled(cue, f) for cue, f in zip(self._others, factors)]
+            for cost in costs:
                 if cost is not None:
                     offset = cost if offset is None else offset + cost
         # A candidate mostly outside the image is not a valid observation.
@@ -321,7 +331,7 @@ class Tracker:
             full, s = scene.prepared.plane_shape, scene.plane_scale
             work_shape = (int(round(full[0] / s)), int(round(full[1] / s)))
             valid = inside_fraction(scene.states, work_shape) >= 0.5
-        return self._sparse.observe(scene, self._others, offset, valid, self._timed)
+        return self._sparse.observe(scene, others, offset, valid, self._timed)
 
     def _choose(self, scene: Scene, obs: Observation, probe_boxes) -> tuple[TrackResult, FrameDetail]:
         """Choose and learn: the best particle (or their mean), its scale moved
@@ -338,6 +348,8 @@ class Tracker:
             result = TrackResult(self._box, 0.0, float("inf"), True, None, self._frame_index)
             return result, FrameDetail(particles, obs, None, probe_boxes, self._scale, None, reshape)
         best = int(np.argmax(p))
+        if self._reliability is not None:
+            self._reliability.observe(self._frame_costs, best)
         corr = self._corr
         confident = corr is None or corr.templates_learn(scene.judged, particles[best], scene.response)
         state = (p / p.sum()) @ particles if cfg.estimate == "mean" else particles[best].copy()

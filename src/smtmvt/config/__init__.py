@@ -330,6 +330,7 @@ _PAPER: dict[str, dict[str, Any]] = {
         correlation_first=0.0,
         scale_push=0.0,
         scale_filter=0.0,
+        cue_reliability=False,
         anchor_cos=-1.0,
         view_weights=None,
         update_margin=None,

@@ -310,6 +310,9 @@ class ExperimentalConfig(Group):
     scale_filter: float = option(
         0.0, Real(0, 1), "Share of the way to :mod:`smtmvt.scale`'s size (docs/experiments.md#n43)."
     )
+    cue_reliability: bool = option(
+        False, Flag(), "Each cue's cost times its agreement with the choices (docs/experiments.md#n51)."
+    )
     anchor_cos: float = option(
         -1.0,
         Real(-1, 1),
