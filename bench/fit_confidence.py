@@ -5,11 +5,11 @@ Usage::
     python bench/fit_confidence.py --fit tune.csv [--check check.csv]
 
 The CSV files are ``bench/lost_calibration.py --frames-out`` files (one line
-per frame: its overlap with the ground truth and the evidence's four features,
+per frame: its overlap with the ground truth and the evidence's five features,
 :meth:`smtmvt.confidence.Evidence.features`). A frame is *tracked* when its
 overlap is at least ``lost_calibration.LOST_OVERLAP``. The fit is a logistic
 regression of "tracked" on the features (Platt scaling), by maximum likelihood
-with the model's signs (``peak``, ``apce``, ``cost``, ``streak`` >= 0:
+with the model's signs (``peak``, ``apce``, ``cost``, ``streak``, ``drift`` >= 0:
 :class:`ConfidenceModel`'s linear score), by ``scipy.optimize.minimize``
 (L-BFGS-B with those bounds). Prints the fitted constants, then for the fit
 file and the check file the precision and recall of ``lost`` (confidence below
@@ -34,12 +34,12 @@ from smtmvt.confidence import CONFIDENCE, LOST_BELOW, ConfidenceModel, Evidence,
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from lost_calibration import FEATURES, LOST_OVERLAP, calibration_error, precision_recall, reliability
 
-#: Signs of the features in the linear score (ConfidenceModel: + peak, + apce, - cost, - streak).
-SIGNS = np.array([1.0, 1.0, -1.0, -1.0])
+#: Signs of the features in the linear score (ConfidenceModel: + peak, + apce, - cost, - streak, - drift).
+SIGNS = np.array([1.0, 1.0, -1.0, -1.0, -1.0])
 
 
 def read_frames(path: Path) -> tuple[np.ndarray, np.ndarray]:
-    """``(features (m, 4), tracked (m,) bool)`` of the frames of a ``--frames-out`` CSV
+    """``(features (m, 5), tracked (m,) bool)`` of the frames of a ``--frames-out`` CSV
     that have a ground-truth overlap."""
     with open(path, newline="") as f:
         rows = [r for r in csv.DictReader(f) if r["overlap"] not in ("", "nan")]
@@ -52,8 +52,8 @@ def read_frames(path: Path) -> tuple[np.ndarray, np.ndarray]:
 
 def confidences(model: ConfidenceModel, x: np.ndarray) -> np.ndarray:
     """Each frame's confidence ``(m,)`` under ``model``, by the package's own mapping
-    (:func:`smtmvt.confidence.confidence`) of the features ``x`` ``(m, 4)``."""
-    return np.array([confidence(Evidence(*np.exp(f[:3]), int(f[3])), model) for f in x])
+    (:func:`smtmvt.confidence.confidence`) of the features ``x`` ``(m, 5)``."""
+    return np.array([confidence(Evidence(*np.exp(f[:3]), int(f[3]), float(f[4])), model) for f in x])
 
 
 def fit(x: np.ndarray, tracked: np.ndarray) -> ConfidenceModel:
@@ -68,11 +68,11 @@ def fit(x: np.ndarray, tracked: np.ndarray) -> ConfidenceModel:
         g = 1.0 / (1.0 + np.exp(-s)) - y
         return nll, np.concatenate([[g.sum()], z.T @ g])
 
-    start = np.array([CONFIDENCE.bias, CONFIDENCE.peak, CONFIDENCE.apce, CONFIDENCE.cost, CONFIDENCE.streak])
-    bounds = [(None, None)] + [(0.0, None)] * 4
+    names = ("bias", "peak", "apce", "cost", "streak", "drift")
+    start = np.array([getattr(CONFIDENCE, name) for name in names])
+    bounds = [(None, None)] + [(0.0, None)] * (len(names) - 1)
     res = minimize(loss, start, jac=True, method="L-BFGS-B", bounds=bounds)
-    bias, peak, apce, cost, streak = (float(v) for v in res.x)
-    return ConfidenceModel(bias=bias, peak=peak, apce=apce, cost=cost, streak=streak)
+    return ConfidenceModel(**{name: float(v) for name, v in zip(names, res.x)})
 
 
 def report(label: str, model: ConfidenceModel, x: np.ndarray, tracked: np.ndarray) -> None:

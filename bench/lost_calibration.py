@@ -22,7 +22,7 @@ when the box's overlap with it is at least ``LOST_OVERLAP`` (0.1). Prints:
 
 and saves the reliability diagram (``--plot``, PNG) and, with
 ``--frames-out``, one CSV line per frame (sequence, seed, frame, overlap,
-confidence, lost and the evidence's four features,
+confidence, lost and the evidence's features,
 :meth:`smtmvt.confidence.Evidence.features`) from which a logistic
 regression fits :class:`smtmvt.confidence.ConfidenceModel`'s constants.
 Not a test: it measures.
@@ -47,7 +47,7 @@ LOST_OVERLAP = 0.1
 #: Equal-width confidence bins of the reliability table.
 BINS = 10
 #: The ``--frames-out`` columns of :meth:`smtmvt.confidence.Evidence.features`.
-FEATURES = ("log_peak_ratio", "log_apce_ratio", "log_cost_ratio", "lost_frames")
+FEATURES = ("log_peak_ratio", "log_apce_ratio", "log_cost_ratio", "lost_frames", "drift")
 
 
 @dataclass(frozen=True)

@@ -105,7 +105,8 @@ def test_evidence_ratios_are_the_filters_judgement_and_the_cost_median(demo):
     t = Tracker(FAST)
     t.init(demo.frames[0], demo.groundtruth[0])
     results = _run(t, demo.frames[1:6])
-    assert results[0].evidence == Evidence(1.0, 1.0, 1.0, 0)  # nothing before the first update
+    first = results[0].evidence  # nothing before the first update to compare with
+    assert (first.peak_ratio, first.apce_ratio, first.cost_ratio, first.lost_frames) == (1.0, 1.0, 1.0, 0)
     history = np.array(t._corr.filter.history)  # (peak, APCE) of each update's response
     costs = [-math.log(r.score) / FAST.alpha for r in results]
     for i in range(1, len(results)):
@@ -113,6 +114,24 @@ def test_evidence_ratios_are_the_filters_judgement_and_the_cost_median(demo):
         assert e.peak_ratio == pytest.approx(history[i, 0] / history[:i, 0].mean())
         assert e.apce_ratio == pytest.approx(history[i, 1] / history[:i, 1].mean())
         assert e.cost_ratio == pytest.approx(costs[i] / np.median(costs[:i]))
+
+
+def test_drift_is_the_chosen_box_residual_over_the_first_template(demo):
+    t = Tracker(FAST)
+    t.init(demo.frames[0], demo.groundtruth[0])
+    first = [Dk[:, 0].astype(np.float64) for Dk in t._sparse.templates.dictionaries]
+    for frame in demo.frames[1:4]:
+        result, detail = t.update_detailed(frame)
+        # by hand: sum over the unit views of 1 - max(cos, 0)^2
+        by_hand = sum(
+            float(x @ x) - max(float(tk @ x), 0.0) ** 2 / float(tk @ tk)
+            for x, tk in zip([v.astype(np.float64) for v in detail.best_views], first)
+        )
+        assert result.evidence.drift == pytest.approx(max(by_hand, 0.0), abs=1e-9)
+        assert 0.0 <= result.evidence.drift <= len(first)
+    # a black frame is far from the first frame's target
+    result, _ = t.update_detailed(np.zeros_like(demo.frames[0]))
+    assert result.evidence.drift > 0.5
 
 
 def test_reinit_tracks_as_a_new_tracker_started_there(demo):

@@ -48,19 +48,24 @@ class Evidence:
         median of the costs chosen before; ``inf`` when no candidate was valid.
     lost_frames : frames in a row, this one included, whose response peak was
         below ``config.template_learn_floor`` times its mean (0: not this frame).
+    drift : the chosen candidate's residual over the first frame's template
+        alone, summed over its unit views (:func:`smtmvt.anchor.anchor_residuals`;
+        0 to the number of views): how far the box is from what the first
+        frame showed (0 without a chosen candidate).
     """
 
     peak_ratio: float = 1.0
     apce_ratio: float = 1.0
     cost_ratio: float = 1.0
     lost_frames: int = 0
+    drift: float = 0.0
 
-    def features(self) -> tuple[float, float, float, float]:
-        """``(log peak_ratio, log apce_ratio, log cost_ratio, lost_frames)``, the
+    def features(self) -> tuple[float, float, float, float, float]:
+        """``(log peak_ratio, log apce_ratio, log cost_ratio, lost_frames, drift)``, the
         ratios clipped to ``[RATIO_FLOOR, 1 / RATIO_FLOOR]``: the inputs of
         :func:`confidence`'s linear score. Raises ValueError naming a NaN field
         or a negative ``lost_frames``."""
-        for name in ("peak_ratio", "apce_ratio", "cost_ratio"):
+        for name in ("peak_ratio", "apce_ratio", "cost_ratio", "drift"):
             if math.isnan(getattr(self, name)):
                 raise ValueError(f"confidence: {name} is NaN ({self})")
         if not (self.lost_frames >= 0):
@@ -69,13 +74,15 @@ class Evidence:
         def log(r: float) -> float:
             return math.log(min(max(r, RATIO_FLOOR), 1.0 / RATIO_FLOOR))
 
-        return log(self.peak_ratio), log(self.apce_ratio), log(self.cost_ratio), float(self.lost_frames)
+        ratios = (log(self.peak_ratio), log(self.apce_ratio), log(self.cost_ratio))
+        return (*ratios, float(self.lost_frames), float(self.drift))
 
 
 @dataclass(frozen=True)
 class ConfidenceModel:
     """The constants of :func:`confidence`: the score is
-    ``bias + peak * log(peak_ratio) + apce * log(apce_ratio) - cost * log(cost_ratio) - streak * lost_frames``.
+    ``bias + peak * log(peak_ratio) + apce * log(apce_ratio) - cost * log(cost_ratio)
+    - streak * lost_frames - drift * drift``.
 
     The slopes must be >= 0 (the confidence then rises with the response's
     peak and APCE and falls with the cost and the lost streak). The defaults
@@ -91,9 +98,10 @@ class ConfidenceModel:
     apce: float = 1.0
     cost: float = 1.5
     streak: float = 0.25
+    drift: float = 0.0
 
     def __post_init__(self) -> None:
-        for name in ("peak", "apce", "cost", "streak"):
+        for name in ("peak", "apce", "cost", "streak", "drift"):
             value = getattr(self, name)
             if not (value >= 0 and math.isfinite(value)):
                 raise ValueError(f"ConfidenceModel: {name} must be a finite number >= 0, got {value}")
@@ -109,9 +117,10 @@ def confidence(evidence: Evidence, model: ConfidenceModel = CONFIDENCE) -> float
     """The confidence in [0, 1] of a frame's box given its ``evidence``:
     ``1 / (1 + exp(-score))``, ``score`` the linear score of :class:`ConfidenceModel`
     (about 0 for an infinite cost ratio, :data:`RATIO_FLOOR`). Monotone: never lower for a higher peak or
-    APCE ratio, never higher for a higher cost ratio or a longer lost streak."""
-    log_peak, log_apce, log_cost, streak = evidence.features()
-    score = model.bias + model.peak * log_peak + model.apce * log_apce - model.cost * log_cost - model.streak * streak
+    APCE ratio, never higher for a higher cost ratio or drift or a longer lost streak."""
+    log_peak, log_apce, log_cost, streak, drift = evidence.features()
+    score = model.bias + model.peak * log_peak + model.apce * log_apce - model.cost * log_cost
+    score -= model.streak * streak + model.drift * drift
     if score >= 0:
         return 1.0 / (1.0 + math.exp(-score))
     return math.exp(score) / (1.0 + math.exp(score))  # no overflow for a very negative score

@@ -60,13 +60,14 @@ def ratio(value: float, typical: float) -> float:
     return 1.0 if value <= typical else math.inf
 
 
-def evidence(score: float, judged, costs: list, lost: int, alpha: float) -> Evidence:
+def evidence(score: float, judged, costs: list, lost: int, alpha: float, drift: float = 0.0) -> Evidence:
     """A frame's :class:`~smtmvt.confidence.Evidence`: the ``judged`` correlation
     response's peak and APCE over their means before
     (:meth:`smtmvt.correlation.CorrelationFilter.judge`; 1 and 1 when None),
     the chosen candidate's cost ``-log(score) / alpha`` over the median of
     ``costs``, those chosen before (appended to it here; ``inf`` for ``score``
-    0), and the ``lost`` streak."""
+    0), the ``lost`` streak, and the chosen candidate's ``drift`` (its residual
+    over the first frame's templates, :func:`smtmvt.anchor.anchor_residuals`)."""
     peak = apce_ratio = 1.0
     if judged is not None:
         now, past = judged
@@ -75,7 +76,7 @@ def evidence(score: float, judged, costs: list, lost: int, alpha: float) -> Evid
     cost_ratio = ratio(cost, float(np.median(costs))) if costs else 1.0
     if math.isfinite(cost):
         costs.append(cost)
-    return Evidence(peak, apce_ratio, cost_ratio, lost)
+    return Evidence(peak, apce_ratio, cost_ratio, lost, drift)
 
 
 def reshaped_box(box, reshape: tuple) -> np.ndarray:

@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 from threadpoolctl import ThreadpoolController
 
+from .anchor import anchor_residuals
 from .confidence import LOST_BELOW, confidence
 from .config import TrackerConfig
 from .cues import Choice, CorrelationCue, Cue, Scene, SparseCue, Start, make_cues
@@ -254,9 +255,19 @@ class Tracker:
         result, detail = self._choose(scene, obs, probe_boxes)
         corr = self._corr
         self._lost = self._lost + 1 if corr is not None and corr.seems_lost(scene.judged) else 0
-        evidence = frame_evidence(result.score, scene.judged, self._costs, self._lost, self.config.alpha)
+        drift = self._drift(detail.best_views)
+        evidence = frame_evidence(result.score, scene.judged, self._costs, self._lost, self.config.alpha, drift)
         c = confidence(evidence)
         return dataclasses.replace(result, confidence=c, lost=c < LOST_BELOW, evidence=evidence), detail
+
+    def _drift(self, views) -> float:
+        """The chosen candidate's residual over the first frame's template alone,
+        summed over its ``views`` (:func:`smtmvt.anchor.anchor_residuals`; 0 for None)."""
+        if views is None:
+            return 0.0
+        assert self._sparse.templates is not None
+        first = [Dk[:, 0] for Dk in self._sparse.templates.dictionaries]
+        return float(anchor_residuals([v[:, None] for v in views], first)[0])
 
     def _response(self, frame) -> tuple | None:
         """The correlation filter's response about this frame's prediction,
