@@ -90,7 +90,9 @@ class ConfidenceModel:
     :data:`LOST_BELOW` line) at a peak 0.4 times its mean, the default
     ``template_learn_floor`` below which the tracker already calls a frame
     lost, with the other features at their usual values; a usual frame
-    (every ratio 1, no streak) gets ``sigmoid(bias)``, about 0.975.
+    (every ratio 1, no streak) gets ``sigmoid(bias)``, about 0.975. ``drift``
+    is 0: fitted, it ranks lost frames better but drops the streak, and a
+    vanished target is then not called lost (docs/experiments.md#n53).
     """
 
     bias: float = 4.0 * math.log(1.0 / 0.4)
