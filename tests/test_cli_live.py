@@ -232,6 +232,9 @@ def test_a_stopped_or_failed_run_keeps_the_lines_tracked(recorded, tmp_path, win
 
     out, scores = tmp_path / "res.txt", tmp_path / "scores.csv"
     if how == "ctrl-c":
+        # as from a terminal: a test run started in the background (``cmd &`` without job
+        # control) inherits SIGINT ignored, and the command then rightly ignores Ctrl-C too
+        previous = signal.signal(signal.SIGINT, signal.default_int_handler)
 
         def on_key(n):
             if n == 4:
@@ -250,7 +253,11 @@ def test_a_stopped_or_failed_run_keeps_the_lines_tracked(recorded, tmp_path, win
             return original(self, frame, *args, **kwargs)
 
         monkeypatch.setattr(Tracker, "update", update)
-    rc = main(live_args(recorded, out, "--box", box_arg(recorded[1]), "--show", "--scores", str(scores)))
+    try:
+        rc = main(live_args(recorded, out, "--box", box_arg(recorded[1]), "--show", "--scores", str(scores)))
+    finally:
+        if how == "ctrl-c":
+            signal.signal(signal.SIGINT, previous)
     err = capsys.readouterr().err
     assert rc == (130 if how == "ctrl-c" else 2), err
     assert "4 lines kept in" in err
