@@ -207,7 +207,6 @@ class Tracker:
         self._lost = 0  # frames in a row the target seemed lost (config.redetect_after)
         self._costs: list[float] = []  # the chosen candidates' costs (TrackResult.confidence)
         self._reliability = Reliability(len(self._others)) if cfg.cue_reliability else None
-        self._frame_costs: list = []  # this frame's costs of the other cues, before reliability
         self._initialized = True
 
     # -- the working frame (config.frame_size) and its planes -----------------
@@ -251,8 +250,10 @@ class Tracker:
             self._frame_index -= 1
             raise
         scene = self._sample(frame, particles, probe_states, planes, response)
-        obs = self._score(scene)
+        obs, costs = self._score(scene)
         result, detail = self._choose(scene, obs, probe_boxes)
+        if self._reliability is not None and detail.best is not None:
+            self._reliability.observe(costs, detail.best)  # read from the next frame on
         corr = self._corr
         self._lost = self._lost + 1 if corr is not None and corr.seems_lost(scene.judged) else 0
         drift = self._drift(detail.best_views)
@@ -321,20 +322,22 @@ class Tracker:
             templates=self._sparse.templates, response=response, judged=judged, patches=patches, rng=self._rng,
         )  # fmt: skip
 
-    def _score(self, scene: Scene) -> Observation:
+    def _score(self, scene: Scene) -> tuple[Observation, list]:
         """Score: each cue's cost summed in the cues' order (a cue off adds
-        nothing), then the sparse cue's bounded coding with that sum as offset."""
+        nothing), then the sparse cue's bounded coding with that sum as offset.
+        Returns the observation and the other cues' costs as they gave them
+        (before ``config.cue_reliability``'s factors; None for a cue with none)."""
         with self._timed("likelihood"):
             costs = [cue.cost(scene) for cue in self._others]
+            terms: list = costs
             others: list = self._others
-            offset = None
             if self._reliability is not None:
                 # each cue's cost times its reliability (config.cue_reliability)
-                self._frame_costs = costs
                 factors = self._reliability.factors()
-                costs = [None if c is None else c * f for c, f in zip(costs, factors)]
+                terms = [None if c is None else c * f for c, f in zip(costs, factors)]
                 others = [Scaled(cue, f) for cue, f in zip(self._others, factors)]
-            for cost in costs:
+            offset = None
+            for cost in terms:
                 if cost is not None:
                     offset = cost if offset is None else offset + cost
         # A candidate mostly outside the image is not a valid observation.
@@ -342,7 +345,7 @@ class Tracker:
             full, s = scene.prepared.plane_shape, scene.plane_scale
             work_shape = (int(round(full[0] / s)), int(round(full[1] / s)))
             valid = inside_fraction(scene.states, work_shape) >= 0.5
-        return self._sparse.observe(scene, others, offset, valid, self._timed)
+        return self._sparse.observe(scene, others, offset, valid, self._timed), costs
 
     def _choose(self, scene: Scene, obs: Observation, probe_boxes) -> tuple[TrackResult, FrameDetail]:
         """Choose and learn: the best particle (or their mean), its scale moved
@@ -359,8 +362,6 @@ class Tracker:
             result = TrackResult(self._box, 0.0, float("inf"), True, None, self._frame_index)
             return result, FrameDetail(particles, obs, None, probe_boxes, self._scale, None, reshape)
         best = int(np.argmax(p))
-        if self._reliability is not None:
-            self._reliability.observe(self._frame_costs, best)
         corr = self._corr
         confident = corr is None or corr.templates_learn(scene.judged, particles[best], scene.response)
         state = (p / p.sum()) @ particles if cfg.estimate == "mean" else particles[best].copy()
