@@ -100,3 +100,90 @@ def test_a_found_frame_teaches_only_when_the_chosen_box_is_at_the_peak(monkeypat
         assert np.isfinite(angles[0]) and not np.array_equal(t._corr.filter.model.A, before)
     else:
         assert angles[0] == np.inf and np.array_equal(t._corr.filter.model.A, before)
+
+
+# -- config.redetect_first and config.redetect_on_lost (docs/experiments.md#n55) --------
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_the_first_filters_search_finds_a_target_that_jumped_out_of_the_window(seed):
+    frames, box = _jump_sequence()
+    wide = _xs(frames, box, seed=seed, redetect_after=2, redetect_first=True)
+    assert np.abs(wide[4:] - TARGET).max() <= 2.0
+
+
+def _drifted_cue(first_history=True):
+    """A correlation cue whose filter learned the target (a checkered block at x 60)
+    on frame 0, and whose model has since drifted onto another bright block (its
+    checks as stripes) at x 180; the frame holds both, 60 px away from a
+    prediction at x 120: ``(cue, frame, predicted box)``."""
+    from smtmvt.correlation import CorrelationFilter, apce, train
+    from smtmvt.cues import CorrelationCue
+    from smtmvt.geometry import box_to_affine
+
+    frames, box = jump_sequence(0, n=1, at=1, width=300)
+    frame = frames[0].copy()
+    stripes = np.where(np.arange(28) // 7 % 2 == 0, 250, 30).astype(np.uint8)
+    look_alike = np.broadcast_to(stripes[None, :, None], (32, 28, 3))
+    cue = CorrelationCue(TrackerConfig(redetect_first=True))
+    cue.filter = CorrelationFilter(frame, box)  # the first filter: the target
+    drifted = box + np.array([120.0, 0, 0, 0])
+    frame[80:112, 180:208] = look_alike
+    cue.filter.model = train(cue.filter._features(frame, drifted), cue.filter._label)
+    cue.scale = np.ones(2)
+    cue.last_learned = box_to_affine(drifted)
+    predicted = box + np.array([60.0, 0, 0, 0])
+    r, rf, _ = cue.filter.both(frame, box)
+    cue.filter.history = [(1.0, 1.0)]
+    if first_history:
+        cue.first_history = [(float(rf.max()), apce(rf))]
+    cue.respond(frame, predicted, search=False)  # sets first_now about the prediction
+    return cue, frame, predicted
+
+
+def test_the_first_filters_search_finds_the_target_where_the_model_finds_its_look_alike():
+    from smtmvt.correlation import peak_point
+
+    cue, frame, predicted = _drifted_cue()
+    by_model = cue._redetect(frame, predicted, cue.filter.response(frame, predicted))
+    by_first = cue._redetect_first(frame, predicted)
+    assert by_first is not None
+    assert abs(peak_point(*by_first)[0] - (60 + 13.5)) <= 4.0
+    # the drifted model's own search goes to the look-alike, or finds nothing
+    assert by_model is None or abs(peak_point(*by_model)[0] - (180 + 13.5)) <= 4.0
+
+
+def test_the_first_filters_search_waits_for_a_frame_the_model_learned_from():
+    cue, frame, predicted = _drifted_cue(first_history=False)
+    assert cue._redetect_first(frame, predicted) is None
+
+
+def test_the_first_filters_history_grows_on_the_frames_the_model_learns_from(demo):
+    t = Tracker(TrackerConfig(n_particles=200, seed=0, redetect_first=True))
+    t.init(demo.frames[0], demo.groundtruth[0])
+    learned = 0
+    for f in demo.frames[1:12]:
+        before = t._corr.filter.model.A.copy()
+        t.update(f)
+        learned += not np.array_equal(before, t._corr.filter.model.A)
+    assert learned >= 5 and len(t._corr.first_history) == learned
+
+
+def test_the_search_follows_the_lost_flag_with_redetect_on_lost(monkeypatch):
+    from smtmvt.cues import CorrelationCue
+
+    frames, box = _jump_sequence()
+    searched = []
+    real = CorrelationCue.respond
+
+    def spy(self, frame, box, search):
+        searched.append(search)
+        return real(self, frame, box, search)
+
+    monkeypatch.setattr(CorrelationCue, "respond", spy)
+    t = Tracker(TrackerConfig(n_particles=200, seed=0, redetect_after=0, redetect_on_lost=True))
+    t.init(frames[0], box)
+    lost = [t.update(f).lost for f in frames[1:]]
+    assert searched == [False] + lost[:-1]
+    assert any(lost)  # the jump is flagged, so the search ran
+    assert abs(t.update(frames[-1]).box[0] - TARGET) <= 2.0

@@ -437,10 +437,19 @@ class CorrelationFilter:
         """
         window = self._window(box)
         features = window_features(frame, window)
+        if first >= 1.0:
+            return respond(self.first, features), window
         r = respond(self.model, features)
         if first:
             r = (1.0 - first) * r + first * respond(self.first, features)
         return r, window
+
+    def both(self, frame: np.ndarray, box) -> tuple[np.ndarray, np.ndarray, Window]:
+        """The model's response ``(h, w)`` and the first box's filter's (:attr:`first`)
+        over the window about ``box`` in ``frame``, from the same features, and the window."""
+        window = self._window(box)
+        features = window_features(frame, window)
+        return respond(self.model, features), respond(self.first, features), window
 
     def scores(self, frame: np.ndarray, box, centres) -> np.ndarray:
         """``r_i / r_max`` clipped to [0, 1] for each centre ``(n, 2)`` ``(x, y)``

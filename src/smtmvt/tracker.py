@@ -205,6 +205,7 @@ class Tracker:
         self._corr = next((c for c in cues if isinstance(c, CorrelationCue)), None)
         self._n_first = self._sparse.first_views(cues)
         self._lost = 0  # frames in a row the target seemed lost (config.redetect_after)
+        self._flagged = False  # whether the last frame's result was lost (config.redetect_on_lost)
         self._costs: list[float] = []  # the chosen candidates' costs (TrackResult.confidence)
         self._reliability = Reliability(len(self._others)) if cfg.cue_reliability else None
         self._initialized = True
@@ -259,7 +260,8 @@ class Tracker:
         drift = self._drift(detail.best_views)
         evidence = frame_evidence(result.score, scene.judged, self._costs, self._lost, self.config.alpha, drift)
         c = confidence(evidence)
-        return dataclasses.replace(result, confidence=c, lost=c < LOST_BELOW, evidence=evidence), detail
+        self._flagged = c < LOST_BELOW
+        return dataclasses.replace(result, confidence=c, lost=self._flagged, evidence=evidence), detail
 
     def _drift(self, views) -> float:
         """The chosen candidate's residual over the first frame's template alone,
@@ -278,7 +280,15 @@ class Tracker:
             return None
         with self._timed("likelihood"):
             box = self._from_work(affine_to_box(self._motion.predicted(self._state)))
-            return self._corr.respond(frame, box, self._lost)
+            return self._corr.respond(frame, box, self._search_wider())
+
+    def _search_wider(self) -> bool:
+        """Whether the correlation cue searches wider this frame: after
+        ``config.redetect_after`` frames in a row that seemed lost, or with
+        ``config.redetect_on_lost`` after a frame whose result was ``lost``."""
+        cfg = self.config
+        after = cfg.redetect_after
+        return bool(after and self._lost >= after) or (cfg.redetect_on_lost and self._flagged)
 
     def _propagate(self, response=None) -> np.ndarray:
         """Predict: this frame's ``(n, 6)`` particles (:meth:`ParticleFilter.propagate`),

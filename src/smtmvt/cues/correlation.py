@@ -28,10 +28,12 @@ from ..geometry import affine_to_box, box_to_affine
 from ..motion import place
 from .base import Choice, Cue, Scene, Start
 
-__all__ = ["CorrelationCue", "REDETECT_REACH"]
+__all__ = ["CorrelationCue", "REDETECT_FIRST_REACH", "REDETECT_REACH"]
 
 #: How far ``config.redetect_after``'s windows are moved, in box widths (x) and heights (y).
 REDETECT_REACH = (0.5, 1.0)
+#: The same with ``config.redetect_first``: also two box sizes away.
+REDETECT_FIRST_REACH = (0.5, 1.0, 2.0)
 
 
 class CorrelationCue(Cue):
@@ -49,6 +51,11 @@ class CorrelationCue(Cue):
         #: the correlation responses' mean peak before this frame (config.correlation_usual_peak)
         self.peak_ref: float | None = None
         self.last_learned = np.zeros(6)  # the last state the filter learned from
+        #: config.redetect_first: the first box's filter's (peak, APCE) about this frame's
+        #: prediction, and on each frame the model learned from before
+        self.first_now: tuple[float, float] | None = None
+        self.first_history: list[tuple[float, float]] = []
+        self.model_now: float | None = None  # the model's peak about this frame's prediction
 
     @classmethod
     def from_config(cls, config, weight: float = 0.0) -> CorrelationCue | None:
@@ -65,19 +72,50 @@ class CorrelationCue(Cue):
         return affine_to_box(states) / np.tile(self.scale, 2)
 
     # -- this frame's response --------------------------------------------------
-    def respond(self, frame, box, lost: int) -> tuple:
+    def respond(self, frame, box, search: bool) -> tuple:
         """The response over the window about ``box`` (the prediction, input-frame
-        pixels), ``(response (h, w), Window)``; after ``lost`` frames in a row
-        that seemed lost (``config.redetect_after``) the wider search's where it is better."""
+        pixels), ``(response (h, w), Window)``; with ``search`` (the target seems
+        lost: ``config.redetect_after``, ``config.redetect_on_lost``) the wider
+        search's where it is better (:meth:`_redetect`, :meth:`_redetect_first`)."""
         assert self.filter is not None
         cfg = self.config
-        response = self.filter.response(frame, box, cfg.correlation_first)
+        if cfg.redetect_first:
+            r, rf, window = self.filter.both(frame, box)
+            f = cfg.correlation_first
+            response = ((1.0 - f) * r + f * rf if f else r), window
+            self.first_now = (float(rf.max()), apce(rf))
+            self.model_now = float(r.max())
+        else:
+            response = self.filter.response(frame, box, cfg.correlation_first)
         self.redetected = False
-        if cfg.redetect_after and lost >= cfg.redetect_after:
-            found = self._redetect(frame, box, response)
+        if search:
+            found = self._redetect_first(frame, box) if cfg.redetect_first else self._redetect(frame, box, response)
             if found is not None:
                 response, self.redetected = found, True
         return response
+
+    def _search_boxes(self, box, reach) -> list[np.ndarray]:
+        """The wider search's windows: about ``box`` (frame pixels) moved by each
+        ``reach`` (box sizes) in the eight directions, and about the last state the
+        filter learned from (at this frame's size) where that is half a box away."""
+        b = np.asarray(box, dtype=np.float64)
+        moves = [(r * dx, r * dy) for r in reach for dx in (-1, 0, 1) for dy in (-1, 0, 1) if dx or dy]
+        boxes = [b + np.array([mx * b[2], my * b[3], 0.0, 0.0]) for mx, my in moves]
+        last = self._input_box(self.last_learned)
+        lb = b.copy()
+        lb[:2] = last[:2] + (last[2:] - b[2:]) / 2.0  # the last learned centre, this frame's size
+        if np.hypot(*(lb[:2] - b[:2])) > 0.5 * np.sqrt(b[2] * b[3]):
+            boxes.append(lb)
+        return boxes
+
+    @staticmethod
+    def _centred(box, response) -> np.ndarray:
+        """``box`` (frame pixels) moved to centre on the peak of ``response``
+        ``(r, Window)``: off a window's centre the Hann window weakens the target
+        and the APCE says little."""
+        centred = np.asarray(box, dtype=np.float64).copy()
+        centred[:2] = peak_point(*response) - (centred[2:] - 1.0) / 2.0
+        return centred
 
     def _redetect(self, frame, box, response) -> tuple | None:
         """The wider search of ``config.redetect_after``: the best response
@@ -90,25 +128,37 @@ class CorrelationCue(Cue):
         if not self.filter.history:
             return None
         cfg = self.config
-        b = np.asarray(box, dtype=np.float64)
-        moves = [(r * dx, r * dy) for r in REDETECT_REACH for dx in (-1, 0, 1) for dy in (-1, 0, 1) if dx or dy]
-        boxes = [b + np.array([mx * b[2], my * b[3], 0.0, 0.0]) for mx, my in moves]
-        last = self._input_box(self.last_learned)
-        lb = b.copy()
-        lb[:2] = last[:2] + (last[2:] - b[2:]) / 2.0  # the last learned centre, this frame's size
-        if np.hypot(*(lb[:2] - b[:2])) > 0.5 * np.sqrt(b[2] * b[3]):
-            boxes.append(lb)
+        boxes = self._search_boxes(box, REDETECT_REACH)
         best = max((self.filter.response(frame, c, cfg.correlation_first) for c in boxes), key=lambda rw: rw[0].max())
-        # judged on the window centred on that peak: off the window's centre the Hann
-        # window weakens the target and its APCE says little
-        centred = b.copy()
-        centred[:2] = peak_point(*best) - (b[2:] - 1.0) / 2.0
-        best = self.filter.response(frame, centred, cfg.correlation_first)
+        best = self.filter.response(frame, self._centred(box, best), cfg.correlation_first)
         if not best[0].max() > response[0].max():
             return None
         past = np.mean(self.filter.history, axis=0)
         now = (float(best[0].max()), apce(best[0]))
         return best if clears((now, past), cfg.correlation_learn_gate) else None
+
+    def _redetect_first(self, frame, box) -> tuple | None:
+        """The wider search of ``config.redetect_first``, judged by the first box's
+        filter alone (which no update moves; the model may have drifted with the
+        box): the windows of :meth:`_search_boxes` (``REDETECT_FIRST_REACH``),
+        the window centred on the highest peak of the first filter's responses;
+        its response there where its peak beats the first filter's about the
+        prediction and clears ``config.correlation_learn_gate`` against the
+        first filter's (peak, APCE) on the frames the model learned from, and
+        where the model does not disagree (its peak there beats its peak about
+        the prediction: a look-alike of the first frame that the model, which
+        learned the target's recent look, does not prefer is not taken); else None."""
+        assert self.filter is not None
+        if not self.first_history or self.first_now is None or self.model_now is None:
+            return None
+        boxes = self._search_boxes(box, REDETECT_FIRST_REACH)
+        best = max((self.filter.response(frame, c, 1.0) for c in boxes), key=lambda rw: rw[0].max())
+        r, rf, window = self.filter.both(frame, self._centred(box, best))
+        now = (float(rf.max()), apce(rf))
+        if not (now[0] > self.first_now[0] and float(r.max()) > self.model_now):
+            return None
+        past = np.mean(self.first_history, axis=0)
+        return (rf, window) if clears((now, past), self.config.correlation_learn_gate) else None
 
     def place(self, moved: np.ndarray, rng: np.random.Generator, response) -> tuple[np.ndarray, int, bool]:
         """A proposal for :meth:`smtmvt.particles.ParticleFilter.propagate`:
@@ -198,6 +248,8 @@ class CorrelationCue(Cue):
         assert self.filter is not None
         if self.learns(scene.judged, choice.state, scene.response):
             self.last_learned = choice.state.copy()
+            if self.first_now is not None and not self.redetected:
+                self.first_history.append(self.first_now)
             self.filter.update(
                 scene.frame, np.asarray(choice.work_box) / np.tile(self.scale, 2), self.config.correlation_rate
             )
