@@ -141,21 +141,74 @@ def _drifted_cue(first_history=True):
     return cue, frame, predicted
 
 
-def test_the_first_filters_search_finds_the_target_where_the_model_finds_its_look_alike():
+def test_the_first_filters_search_proposes_the_target_where_the_model_finds_its_look_alike():
     from smtmvt.correlation import peak_point
 
     cue, frame, predicted = _drifted_cue()
     by_model = cue._redetect(frame, predicted, cue.filter.response(frame, predicted))
-    by_first = cue._redetect_first(frame, predicted)
-    assert by_first is not None
-    assert abs(peak_point(*by_first)[0] - (60 + 13.5)) <= 4.0
+    proposal = cue._propose(frame, predicted)
+    assert proposal is not None
+    assert abs(peak_point(*proposal)[0] - (60 + 13.5)) <= 4.0
     # the drifted model's own search goes to the look-alike, or finds nothing
     assert by_model is None or abs(peak_point(*by_model)[0] - (180 + 13.5)) <= 4.0
 
 
 def test_the_first_filters_search_waits_for_a_frame_the_model_learned_from():
     cue, frame, predicted = _drifted_cue(first_history=False)
-    assert cue._redetect_first(frame, predicted) is None
+    assert cue._propose(frame, predicted) is None
+
+
+def _state_at(point):
+    """The state of a 28 x 32 box centred on ``point`` (x, y)."""
+    from smtmvt.geometry import box_to_affine
+
+    return box_to_affine(np.array([point[0] - 13.5, point[1] - 15.5, 28.0, 32.0]))
+
+
+def test_a_proposal_adds_a_place_and_takes_none_away():
+    # with a proposal, candidates are scored by the response and the proposal, each
+    # measured against its filter's usual peak: the place more usual for its filter
+    # costs 0, the other what it lacks of that; without one, by the response alone
+    from smtmvt.correlation import peak_point
+
+    cue, frame, predicted = _drifted_cue()
+    cue.weight, cue.peak_ref = 1.0, 1.0  # the model's usual peak
+    response = cue.respond(frame, predicted, search=True)
+    assert cue.proposal is not None
+    points = [peak_point(*response), peak_point(*cue.proposal), np.array([280.0, 10.0])]
+    states = np.array([_state_at(p) for p in points])
+    here, there = response[0].max() / cue.peak_ref, cue.proposal[0].max() / cue.first_history[0][0]
+    assert there > here  # the drifted model's response is weak, the first filter's usual
+    np.testing.assert_allclose(cue.costs(response, states), [there - here, 0.0, there], atol=1e-9)
+    cue.proposal = None
+    np.testing.assert_allclose(cue.costs(response, states), [0.0, here, here], atol=1e-9)
+
+
+def test_one_response_costs_as_the_correlation_cost():
+    from smtmvt.correlation import Window, correlation_cost, correlation_cost_over
+
+    rng = np.random.default_rng(0)
+    r = rng.random((12, 10)) - 0.2
+    window = Window(origin=(5.0, 7.0), step=(1.5, 1.5), size=(48, 40))
+    centres = rng.uniform(0, 80, (50, 2))
+    for reference in (None, 0.5, 2.0):
+        np.testing.assert_allclose(
+            correlation_cost_over([(r, window, reference)], centres), correlation_cost(r, window, centres, reference)
+        )
+    assert not correlation_cost_over([(-r - 1, window, None)], centres).any()
+
+
+def test_a_state_taken_at_the_proposal_is_a_jump_and_teaches_nothing():
+    from smtmvt.correlation import peak_point
+
+    cue, frame, predicted = _drifted_cue()
+    response = cue.respond(frame, predicted, search=True)
+
+    there, here = _state_at(peak_point(*cue.proposal)), _state_at(peak_point(*response))
+    assert cue.jumped(there, response) and not cue.jumped(here, response)
+    gate = ((1.0, 1.0), np.array([1.0, 1.0]))  # a response as strong as usual
+    assert not cue.learns(gate, there, response) and cue.learns(gate, here, response)
+    assert not cue.templates_learn(None, there, response) and cue.templates_learn(None, here, response)
 
 
 def test_the_first_filters_history_grows_on_the_frames_the_model_learns_from(demo):

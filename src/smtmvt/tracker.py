@@ -382,7 +382,8 @@ class Tracker:
             state[:4] *= factor
             particles = particles.copy()
             particles[:, :4] *= factor
-        velocity = np.zeros(2) if corr is not None and corr.redetected else state[4:] - self._state[4:]
+        jumped = corr is not None and corr.jumped(state, scene.response)
+        velocity = np.zeros(2) if jumped else state[4:] - self._state[4:]
         self._motion.chosen(particles, p, velocity, float(obs.residual[best]))
         self._state = state
         self._work_box = tuple(float(v) for v in affine_to_box(self._state))

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..correlation import CELL, CorrelationFilter, apce, clears, correlation_cost, peak_point
+from ..correlation import CELL, CorrelationFilter, apce, clears, correlation_cost, correlation_cost_over, peak_point
 from ..geometry import affine_to_box, box_to_affine
 from ..motion import place
 from .base import Choice, Cue, Scene, Start
@@ -55,7 +55,9 @@ class CorrelationCue(Cue):
         #: prediction, and on each frame the model learned from before
         self.first_now: tuple[float, float] | None = None
         self.first_history: list[tuple[float, float]] = []
-        self.model_now: float | None = None  # the model's peak about this frame's prediction
+        #: config.redetect_first: the first filter's response over the window the wider
+        #: search proposes this frame, ``(r (h, w), Window)``, or None
+        self.proposal: tuple | None = None
 
     @classmethod
     def from_config(cls, config, weight: float = 0.0) -> CorrelationCue | None:
@@ -76,20 +78,23 @@ class CorrelationCue(Cue):
         """The response over the window about ``box`` (the prediction, input-frame
         pixels), ``(response (h, w), Window)``; with ``search`` (the target seems
         lost: ``config.redetect_after``, ``config.redetect_on_lost``) the wider
-        search's where it is better (:meth:`_redetect`, :meth:`_redetect_first`)."""
+        search's where it is better (:meth:`_redetect`), or with
+        ``config.redetect_first`` the response about the prediction and the
+        search's as a second place (:attr:`proposal`, :meth:`_propose`)."""
         assert self.filter is not None
         cfg = self.config
+        self.redetected = False
+        self.proposal = None
         if cfg.redetect_first:
             r, rf, window = self.filter.both(frame, box)
             f = cfg.correlation_first
-            response = ((1.0 - f) * r + f * rf if f else r), window
             self.first_now = (float(rf.max()), apce(rf))
-            self.model_now = float(r.max())
-        else:
-            response = self.filter.response(frame, box, cfg.correlation_first)
-        self.redetected = False
+            if search:
+                self.proposal = self._propose(frame, box)
+            return ((1.0 - f) * r + f * rf if f else r), window
+        response = self.filter.response(frame, box, cfg.correlation_first)
         if search:
-            found = self._redetect_first(frame, box) if cfg.redetect_first else self._redetect(frame, box, response)
+            found = self._redetect(frame, box, response)
             if found is not None:
                 response, self.redetected = found, True
         return response
@@ -137,45 +142,40 @@ class CorrelationCue(Cue):
         now = (float(best[0].max()), apce(best[0]))
         return best if clears((now, past), cfg.correlation_learn_gate) else None
 
-    def _redetect_first(self, frame, box) -> tuple | None:
-        """The wider search of ``config.redetect_first``, judged by the first box's
-        filter alone (which no update moves; the model may have drifted with the
-        box): the windows of :meth:`_search_boxes` (``REDETECT_FIRST_REACH``),
-        the window centred on the highest peak of the first filter's responses;
-        its response there where its peak beats the first filter's about the
-        prediction and clears ``config.correlation_learn_gate`` against the
-        first filter's (peak, APCE) on the frames the model learned from, and
-        where the model does not disagree (its peak there beats its peak about
-        the prediction: a look-alike of the first frame that the model, which
-        learned the target's recent look, does not prefer is not taken); else None."""
+    def _propose(self, frame, box) -> tuple | None:
+        """The wider search of ``config.redetect_first``, by the first box's filter
+        alone (which no update moves; the model may have drifted with the box):
+        over the windows of :meth:`_search_boxes` (``REDETECT_FIRST_REACH``), the
+        first filter's response ``(r (h, w), Window)`` over the window centred on
+        its highest peak, where that peak beats its peak about the prediction;
+        else None. It only proposes a second place: its candidates are scored
+        with the others by every cue (:meth:`costs`, :meth:`place`)."""
         assert self.filter is not None
-        if not self.first_history or self.first_now is None or self.model_now is None:
+        if not self.first_history or self.first_now is None:
             return None
         boxes = self._search_boxes(box, REDETECT_FIRST_REACH)
         best = max((self.filter.response(frame, c, 1.0) for c in boxes), key=lambda rw: rw[0].max())
-        r, rf, window = self.filter.both(frame, self._centred(box, best))
-        now = (float(rf.max()), apce(rf))
-        if not (now[0] > self.first_now[0] and float(r.max()) > self.model_now):
-            return None
-        past = np.mean(self.first_history, axis=0)
-        return (rf, window) if clears((now, past), self.config.correlation_learn_gate) else None
+        best = self.filter.response(frame, self._centred(box, best), 1.0)
+        return best if float(best[0].max()) > self.first_now[0] else None
 
     def place(self, moved: np.ndarray, rng: np.random.Generator, response) -> tuple[np.ndarray, int, bool]:
         """A proposal for :meth:`smtmvt.particles.ParticleFilter.propagate`:
         ``moved`` (n, 6) with its last ``config.correlation_particles`` share
         (where resampling puts copies of the best) placed about the peak of
         ``response`` (:func:`smtmvt.motion.place`); how many were placed; and
-        whether they have no parent for the motion cue (a wider search's)."""
+        whether they have no parent for the motion cue (a wider search's). With
+        a :attr:`proposal` they are placed about its peak instead."""
+        own = self.redetected or self.proposal is not None
         count = int(round(self.config.correlation_particles * len(moved)))
         if not count:
-            return moved, 0, self.redetected
-        r, window = response
+            return moved, 0, own
+        r, window = response if self.proposal is None else self.proposal
         # about the peak cell's centre (as the centre of a one-pixel box, to map it to the
         # working frame as box centres are), half a cell's standard deviation
         peak = np.array([[*peak_point(r, window), 1.0, 1.0]]) * np.tile(self.scale, 2)
         point = box_to_affine(peak)[0, 4:]
         step = np.asarray(window.step) * self.scale  # frame pixels per window pixel, working frame
-        return place(moved, count, point, 0.5 * CELL * step, rng), count, self.redetected
+        return place(moved, count, point, 0.5 * CELL * step, rng), count, own
 
     # -- the gates ----------------------------------------------------------------
     def judge(self, response):
@@ -218,7 +218,22 @@ class CorrelationCue(Cue):
             recent = clears(self.filter.judged(cfg.template_learn_memory), cfg.template_learn_gate)
             if not (recent and not self.seems_lost(judged)):
                 return False
-        return not self.redetected or self.near_peak(state, response)
+        return not self.jumped(state, response) or (self.redetected and self.near_peak(state, response))
+
+    def jumped(self, state: np.ndarray, response) -> bool:
+        """Whether the chosen ``state`` left the place the target was followed to:
+        this frame's response came from the wider search (:attr:`redetected`), or
+        the state lies near the :attr:`proposal`'s peak and not near
+        ``response``'s. On such a frame nothing learns (the filter, the scale
+        filter, the templates) unless the state is at a found response's peak,
+        and the velocity is reset."""
+        if self.redetected:
+            return True
+        return (
+            self.proposal is not None
+            and self.near_peak(state, self.proposal)
+            and not self.near_peak(state, response)
+        )
 
     def learns(self, judged, state: np.ndarray, response) -> bool:
         """Whether the filter (and the scale filter) learn from this frame's
@@ -226,7 +241,8 @@ class CorrelationCue(Cue):
         ``config.correlation_learn_gate`` (:func:`clears`) and, after a wider
         search, the state is near its peak."""
         gate = self.config.correlation_learn_gate
-        return (not any(gate) or clears(judged, gate)) and (not self.redetected or self.near_peak(state, response))
+        jumped = self.jumped(state, response) and not (self.redetected and self.near_peak(state, response))
+        return (not any(gate) or clears(judged, gate)) and not jumped
 
     # -- the cue ------------------------------------------------------------------
     def costs(self, response, states: np.ndarray) -> np.ndarray:
@@ -236,7 +252,12 @@ class CorrelationCue(Cue):
         (:attr:`peak_ref`), ``(n,)``."""
         centres = box_to_affine(self._input_box(states))[:, 4:]
         r, window = response
-        return self.weight * correlation_cost(r, window, centres, self.peak_ref)
+        if self.proposal is None:
+            return self.weight * correlation_cost(r, window, centres, self.peak_ref)
+        # config.redetect_first: the proposal measured against the first filter's usual peak
+        usual = float(np.mean(self.first_history, axis=0)[0])
+        parts = [(r, window, self.peak_ref), (*self.proposal, usual)]
+        return self.weight * correlation_cost_over(parts, centres)
 
     def cost(self, scene: Scene) -> np.ndarray | None:
         """:meth:`costs` of the scene's candidates; None with the weight 0."""
