@@ -342,29 +342,6 @@ def correlation_cost(response: np.ndarray, window: Window, centres, reference: f
     return (1.0 - relative_scores(response, window, centres)) * (peak / scale)
 
 
-def correlation_cost_over(parts, centres) -> np.ndarray:
-    """The correlation cue's cost of each frame point ``(n, 2)`` ``(x, y)`` over
-    several responses, ``parts`` a sequence of ``(response (h, w), Window,
-    reference)``: ``M - max_k r_k(i) / ref_k``, ``r_k(i)`` response k at the
-    point (:func:`sample`, 0 outside its window) clipped to ``[0, r_k max]``,
-    ``ref_k`` its ``reference`` (None or not positive: its peak) and ``M`` the
-    largest ``r_k max / ref_k``; ``(n,)`` float64 in ``[0, M]``. Responses
-    with no positive peak are left out (all 0 when none is left). With one
-    response it is :func:`correlation_cost`: the point best under any response,
-    each measured against its own usual peak, costs 0."""
-    n = len(np.asarray(centres).reshape(-1, 2))
-    best, top = np.zeros(n), 0.0
-    for response, window, reference in parts:
-        peak = float(response.max())
-        if not peak > 0:
-            continue
-        scale = reference if reference is not None and reference > 0 else peak
-        r = np.clip(sample(response, window.cells(centres)), 0.0, peak)
-        best = np.maximum(best, r / scale)
-        top = max(top, peak / scale)
-    return top - best
-
-
 def peak_point(response: np.ndarray, window: Window) -> np.ndarray:
     """The frame point ``(2,)`` ``(x, y)`` of the centre of the cell where
     ``response`` ``(h, w)`` over ``window`` is highest (the first such cell)."""
@@ -460,19 +437,10 @@ class CorrelationFilter:
         """
         window = self._window(box)
         features = window_features(frame, window)
-        if first >= 1.0:
-            return respond(self.first, features), window
         r = respond(self.model, features)
         if first:
             r = (1.0 - first) * r + first * respond(self.first, features)
         return r, window
-
-    def both(self, frame: np.ndarray, box) -> tuple[np.ndarray, np.ndarray, Window]:
-        """The model's response ``(h, w)`` and the first box's filter's (:attr:`first`)
-        over the window about ``box`` in ``frame``, from the same features, and the window."""
-        window = self._window(box)
-        features = window_features(frame, window)
-        return respond(self.model, features), respond(self.first, features), window
 
     def scores(self, frame: np.ndarray, box, centres) -> np.ndarray:
         """``r_i / r_max`` clipped to [0, 1] for each centre ``(n, 2)`` ``(x, y)``

@@ -205,7 +205,6 @@ class Tracker:
         self._corr = next((c for c in cues if isinstance(c, CorrelationCue)), None)
         self._n_first = self._sparse.first_views(cues)
         self._lost = 0  # frames in a row the target seemed lost (config.redetect_after)
-        self._flagged = False  # whether the last frame's result was lost (config.redetect_on_lost)
         self._costs: list[float] = []  # the chosen candidates' costs (TrackResult.confidence)
         self._reliability = Reliability(len(self._others)) if cfg.cue_reliability else None
         self._initialized = True
@@ -260,8 +259,7 @@ class Tracker:
         drift = self._drift(detail.best_views)
         evidence = frame_evidence(result.score, scene.judged, self._costs, self._lost, self.config.alpha, drift)
         c = confidence(evidence)
-        self._flagged = c < LOST_BELOW
-        return dataclasses.replace(result, confidence=c, lost=self._flagged, evidence=evidence), detail
+        return dataclasses.replace(result, confidence=c, lost=c < LOST_BELOW, evidence=evidence), detail
 
     def _drift(self, views) -> float:
         """The chosen candidate's residual over the first frame's template alone,
@@ -280,15 +278,7 @@ class Tracker:
             return None
         with self._timed("likelihood"):
             box = self._from_work(affine_to_box(self._motion.predicted(self._state)))
-            return self._corr.respond(frame, box, self._search_wider())
-
-    def _search_wider(self) -> bool:
-        """Whether the correlation cue searches wider this frame: after
-        ``config.redetect_after`` frames in a row that seemed lost, or with
-        ``config.redetect_on_lost`` after a frame whose result was ``lost``."""
-        cfg = self.config
-        after = cfg.redetect_after
-        return bool(after and self._lost >= after) or (cfg.redetect_on_lost and self._flagged)
+            return self._corr.respond(frame, box, self._lost)
 
     def _propagate(self, response=None) -> np.ndarray:
         """Predict: this frame's ``(n, 6)`` particles (:meth:`ParticleFilter.propagate`),
@@ -382,8 +372,7 @@ class Tracker:
             state[:4] *= factor
             particles = particles.copy()
             particles[:, :4] *= factor
-        jumped = corr is not None and corr.jumped(state, scene.response)
-        velocity = np.zeros(2) if jumped else state[4:] - self._state[4:]
+        velocity = np.zeros(2) if corr is not None and corr.redetected else state[4:] - self._state[4:]
         self._motion.chosen(particles, p, velocity, float(obs.residual[best]))
         self._state = state
         self._work_box = tuple(float(v) for v in affine_to_box(self._state))

@@ -313,12 +313,6 @@ class ExperimentalConfig(Group):
     cue_reliability: bool = option(
         False, Flag(), "Each cue's cost times its agreement with the choices (docs/experiments.md#n51)."
     )
-    redetect_on_lost: bool = option(
-        False, Flag(), "The wider search after each frame flagged ``lost`` (docs/experiments.md#n55)."
-    )
-    redetect_first: bool = option(
-        False, Flag(), "The wider search judged by the first box's filter alone (docs/experiments.md#n55)."
-    )
     anchor_cos: float = option(
         -1.0,
         Real(-1, 1),

@@ -23,17 +23,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..correlation import CELL, CorrelationFilter, apce, clears, correlation_cost, correlation_cost_over, peak_point
+from ..correlation import CELL, CorrelationFilter, apce, clears, correlation_cost, peak_point
 from ..geometry import affine_to_box, box_to_affine
 from ..motion import place
 from .base import Choice, Cue, Scene, Start
 
-__all__ = ["CorrelationCue", "REDETECT_FIRST_REACH", "REDETECT_REACH"]
+__all__ = ["CorrelationCue", "REDETECT_REACH"]
 
 #: How far ``config.redetect_after``'s windows are moved, in box widths (x) and heights (y).
 REDETECT_REACH = (0.5, 1.0)
-#: The same with ``config.redetect_first``: also two box sizes away.
-REDETECT_FIRST_REACH = (0.5, 1.0, 2.0)
 
 
 class CorrelationCue(Cue):
@@ -51,13 +49,6 @@ class CorrelationCue(Cue):
         #: the correlation responses' mean peak before this frame (config.correlation_usual_peak)
         self.peak_ref: float | None = None
         self.last_learned = np.zeros(6)  # the last state the filter learned from
-        #: config.redetect_first: the first box's filter's (peak, APCE) about this frame's
-        #: prediction, and on each frame the model learned from before
-        self.first_now: tuple[float, float] | None = None
-        self.first_history: list[tuple[float, float]] = []
-        #: config.redetect_first: the first filter's response over the window the wider
-        #: search proposes this frame, ``(r (h, w), Window)``, or None
-        self.proposal: tuple | None = None
 
     @classmethod
     def from_config(cls, config, weight: float = 0.0) -> CorrelationCue | None:
@@ -74,53 +65,19 @@ class CorrelationCue(Cue):
         return affine_to_box(states) / np.tile(self.scale, 2)
 
     # -- this frame's response --------------------------------------------------
-    def respond(self, frame, box, search: bool) -> tuple:
+    def respond(self, frame, box, lost: int) -> tuple:
         """The response over the window about ``box`` (the prediction, input-frame
-        pixels), ``(response (h, w), Window)``; with ``search`` (the target seems
-        lost: ``config.redetect_after``, ``config.redetect_on_lost``) the wider
-        search's where it is better (:meth:`_redetect`), or with
-        ``config.redetect_first`` the response about the prediction and the
-        search's as a second place (:attr:`proposal`, :meth:`_propose`)."""
+        pixels), ``(response (h, w), Window)``; after ``lost`` frames in a row
+        that seemed lost (``config.redetect_after``) the wider search's where it is better."""
         assert self.filter is not None
         cfg = self.config
-        self.redetected = False
-        self.proposal = None
-        if cfg.redetect_first:
-            r, rf, window = self.filter.both(frame, box)
-            f = cfg.correlation_first
-            self.first_now = (float(rf.max()), apce(rf))
-            if search:
-                self.proposal = self._propose(frame, box)
-            return ((1.0 - f) * r + f * rf if f else r), window
         response = self.filter.response(frame, box, cfg.correlation_first)
-        if search:
+        self.redetected = False
+        if cfg.redetect_after and lost >= cfg.redetect_after:
             found = self._redetect(frame, box, response)
             if found is not None:
                 response, self.redetected = found, True
         return response
-
-    def _search_boxes(self, box, reach) -> list[np.ndarray]:
-        """The wider search's windows: about ``box`` (frame pixels) moved by each
-        ``reach`` (box sizes) in the eight directions, and about the last state the
-        filter learned from (at this frame's size) where that is half a box away."""
-        b = np.asarray(box, dtype=np.float64)
-        moves = [(r * dx, r * dy) for r in reach for dx in (-1, 0, 1) for dy in (-1, 0, 1) if dx or dy]
-        boxes = [b + np.array([mx * b[2], my * b[3], 0.0, 0.0]) for mx, my in moves]
-        last = self._input_box(self.last_learned)
-        lb = b.copy()
-        lb[:2] = last[:2] + (last[2:] - b[2:]) / 2.0  # the last learned centre, this frame's size
-        if np.hypot(*(lb[:2] - b[:2])) > 0.5 * np.sqrt(b[2] * b[3]):
-            boxes.append(lb)
-        return boxes
-
-    @staticmethod
-    def _centred(box, response) -> np.ndarray:
-        """``box`` (frame pixels) moved to centre on the peak of ``response``
-        ``(r, Window)``: off a window's centre the Hann window weakens the target
-        and the APCE says little."""
-        centred = np.asarray(box, dtype=np.float64).copy()
-        centred[:2] = peak_point(*response) - (centred[2:] - 1.0) / 2.0
-        return centred
 
     def _redetect(self, frame, box, response) -> tuple | None:
         """The wider search of ``config.redetect_after``: the best response
@@ -133,49 +90,42 @@ class CorrelationCue(Cue):
         if not self.filter.history:
             return None
         cfg = self.config
-        boxes = self._search_boxes(box, REDETECT_REACH)
+        b = np.asarray(box, dtype=np.float64)
+        moves = [(r * dx, r * dy) for r in REDETECT_REACH for dx in (-1, 0, 1) for dy in (-1, 0, 1) if dx or dy]
+        boxes = [b + np.array([mx * b[2], my * b[3], 0.0, 0.0]) for mx, my in moves]
+        last = self._input_box(self.last_learned)
+        lb = b.copy()
+        lb[:2] = last[:2] + (last[2:] - b[2:]) / 2.0  # the last learned centre, this frame's size
+        if np.hypot(*(lb[:2] - b[:2])) > 0.5 * np.sqrt(b[2] * b[3]):
+            boxes.append(lb)
         best = max((self.filter.response(frame, c, cfg.correlation_first) for c in boxes), key=lambda rw: rw[0].max())
-        best = self.filter.response(frame, self._centred(box, best), cfg.correlation_first)
+        # judged on the window centred on that peak: off the window's centre the Hann
+        # window weakens the target and its APCE says little
+        centred = b.copy()
+        centred[:2] = peak_point(*best) - (b[2:] - 1.0) / 2.0
+        best = self.filter.response(frame, centred, cfg.correlation_first)
         if not best[0].max() > response[0].max():
             return None
         past = np.mean(self.filter.history, axis=0)
         now = (float(best[0].max()), apce(best[0]))
         return best if clears((now, past), cfg.correlation_learn_gate) else None
 
-    def _propose(self, frame, box) -> tuple | None:
-        """The wider search of ``config.redetect_first``, by the first box's filter
-        alone (which no update moves; the model may have drifted with the box):
-        over the windows of :meth:`_search_boxes` (``REDETECT_FIRST_REACH``), the
-        first filter's response ``(r (h, w), Window)`` over the window centred on
-        its highest peak, where that peak beats its peak about the prediction;
-        else None. It only proposes a second place: its candidates are scored
-        with the others by every cue (:meth:`costs`, :meth:`place`)."""
-        assert self.filter is not None
-        if not self.first_history or self.first_now is None:
-            return None
-        boxes = self._search_boxes(box, REDETECT_FIRST_REACH)
-        best = max((self.filter.response(frame, c, 1.0) for c in boxes), key=lambda rw: rw[0].max())
-        best = self.filter.response(frame, self._centred(box, best), 1.0)
-        return best if float(best[0].max()) > self.first_now[0] else None
-
     def place(self, moved: np.ndarray, rng: np.random.Generator, response) -> tuple[np.ndarray, int, bool]:
         """A proposal for :meth:`smtmvt.particles.ParticleFilter.propagate`:
         ``moved`` (n, 6) with its last ``config.correlation_particles`` share
         (where resampling puts copies of the best) placed about the peak of
         ``response`` (:func:`smtmvt.motion.place`); how many were placed; and
-        whether they have no parent for the motion cue (a wider search's). With
-        a :attr:`proposal` they are placed about its peak instead."""
-        own = self.redetected or self.proposal is not None
+        whether they have no parent for the motion cue (a wider search's)."""
         count = int(round(self.config.correlation_particles * len(moved)))
         if not count:
-            return moved, 0, own
-        r, window = response if self.proposal is None else self.proposal
+            return moved, 0, self.redetected
+        r, window = response
         # about the peak cell's centre (as the centre of a one-pixel box, to map it to the
         # working frame as box centres are), half a cell's standard deviation
         peak = np.array([[*peak_point(r, window), 1.0, 1.0]]) * np.tile(self.scale, 2)
         point = box_to_affine(peak)[0, 4:]
         step = np.asarray(window.step) * self.scale  # frame pixels per window pixel, working frame
-        return place(moved, count, point, 0.5 * CELL * step, rng), count, own
+        return place(moved, count, point, 0.5 * CELL * step, rng), count, self.redetected
 
     # -- the gates ----------------------------------------------------------------
     def judge(self, response):
@@ -218,22 +168,7 @@ class CorrelationCue(Cue):
             recent = clears(self.filter.judged(cfg.template_learn_memory), cfg.template_learn_gate)
             if not (recent and not self.seems_lost(judged)):
                 return False
-        return not self.jumped(state, response) or (self.redetected and self.near_peak(state, response))
-
-    def jumped(self, state: np.ndarray, response) -> bool:
-        """Whether the chosen ``state`` left the place the target was followed to:
-        this frame's response came from the wider search (:attr:`redetected`), or
-        the state lies near the :attr:`proposal`'s peak and not near
-        ``response``'s. On such a frame nothing learns (the filter, the scale
-        filter, the templates) unless the state is at a found response's peak,
-        and the velocity is reset."""
-        if self.redetected:
-            return True
-        return (
-            self.proposal is not None
-            and self.near_peak(state, self.proposal)
-            and not self.near_peak(state, response)
-        )
+        return not self.redetected or self.near_peak(state, response)
 
     def learns(self, judged, state: np.ndarray, response) -> bool:
         """Whether the filter (and the scale filter) learn from this frame's
@@ -241,8 +176,7 @@ class CorrelationCue(Cue):
         ``config.correlation_learn_gate`` (:func:`clears`) and, after a wider
         search, the state is near its peak."""
         gate = self.config.correlation_learn_gate
-        jumped = self.jumped(state, response) and not (self.redetected and self.near_peak(state, response))
-        return (not any(gate) or clears(judged, gate)) and not jumped
+        return (not any(gate) or clears(judged, gate)) and (not self.redetected or self.near_peak(state, response))
 
     # -- the cue ------------------------------------------------------------------
     def costs(self, response, states: np.ndarray) -> np.ndarray:
@@ -252,12 +186,7 @@ class CorrelationCue(Cue):
         (:attr:`peak_ref`), ``(n,)``."""
         centres = box_to_affine(self._input_box(states))[:, 4:]
         r, window = response
-        if self.proposal is None:
-            return self.weight * correlation_cost(r, window, centres, self.peak_ref)
-        # config.redetect_first: the proposal measured against the first filter's usual peak
-        usual = float(np.mean(self.first_history, axis=0)[0])
-        parts = [(r, window, self.peak_ref), (*self.proposal, usual)]
-        return self.weight * correlation_cost_over(parts, centres)
+        return self.weight * correlation_cost(r, window, centres, self.peak_ref)
 
     def cost(self, scene: Scene) -> np.ndarray | None:
         """:meth:`costs` of the scene's candidates; None with the weight 0."""
@@ -269,8 +198,6 @@ class CorrelationCue(Cue):
         assert self.filter is not None
         if self.learns(scene.judged, choice.state, scene.response):
             self.last_learned = choice.state.copy()
-            if self.first_now is not None and not self.redetected:
-                self.first_history.append(self.first_now)
             self.filter.update(
                 scene.frame, np.asarray(choice.work_box) / np.tile(self.scale, 2), self.config.correlation_rate
             )
