@@ -7,6 +7,7 @@ Usage::
     python bench/sweep.py show TAG [TAG ...] [--out RUNS] [--seeds K | a-b | i,j] [--complete]
                           [--split bench/split.json]
     python bench/sweep.py errors TAG [--out RUNS] [--seeds ...] [--data DIR ...]
+    python bench/sweep.py losses TAG [--out RUNS] [--seeds ...] [--data DIR ...]
 
 ``run`` is ``smtmvt evaluate`` (:func:`smtmvt.evaluation.runner.run_evaluation`) of the
 tracker ``smtmvt`` with the configuration as its tracker options (``TrackerConfig``
@@ -50,6 +51,10 @@ the median offset of its centre in the truth's widths and heights. Where
 the wrong size (stop 31: Basketball, Girl); the other way round, it is lost
 or offset (Bolt, Football). A run folder knows its dataset; ``--data`` is needed
 only for a sweep folder of before.
+``losses`` lists where each run loses the target (:func:`loss_spans`: spans
+of 5 or more frames with overlap under 0.1) and how many runs end lost: a
+loss that lasts to the end is a failure to recover, one that ends a recovery
+(issue 48 item 5, docs/experiments.md#n55).
 Not a test: it measures.
 """
 
@@ -325,6 +330,45 @@ def error_split(boxes, gt) -> dict:
     }
 
 
+def loss_spans(boxes, gt, below: float = 0.1, least: int = 5) -> list[tuple[int, int, bool]]:
+    """Where one run loses the target: each span of at least ``least`` frames in a
+    row whose overlap with the truth is under ``below`` (the toolkit's rule for
+    a lost frame, issue 51), as ``(first frame, 1-based; frames; whether it
+    lasts to the last frame)``. ``boxes``, ``gt`` as for :func:`error_split`
+    (prepared the same way; frames with invalid truth neither count nor break
+    a span)."""
+    import numpy as np
+
+    from smtmvt.evaluation.metrics import overlap_ratio, prepare_predictions
+
+    b, g, keep = prepare_predictions(boxes, gt)
+    frames = np.flatnonzero(keep)
+    lost = np.nan_to_num(overlap_ratio(b[keep], g[keep]), nan=0.0) < below
+    spans, start = [], None
+    for i, is_lost in enumerate([*lost, False]):
+        if is_lost and start is None:
+            start = i
+        elif not is_lost and start is not None:
+            if i - start >= least:
+                spans.append((int(frames[start]) + 1, i - start, i == len(lost)))
+            start = None
+    return spans
+
+
+def losses(args) -> None:
+    """Print :func:`loss_spans` per sequence and seed, and how many runs end lost."""
+    paths = {name: path for _, name, path in _sequences(args.data or [], None)}
+    recs = _load(Path(args.out) / args.tag, args.seeds)
+    ended = 0
+    for (s, k), rec in sorted(recs.items(), key=lambda kv: (kv[0][0].lower(), kv[0][1])):
+        spans = loss_spans(rec["boxes"], _groundtruth(rec, paths, args.data or []))
+        ended += any(to_end for _, _, to_end in spans)
+        if spans:
+            shown = ", ".join(f"{a}+{n}{' (to the end)' if to_end else ''}" for a, n, to_end in spans)
+            print(f"{s:<14}#{k}  {shown}")
+    print(f"{args.tag}: {len(recs)} runs, {ended} lost to the end (frame+frames: overlap < 0.1 for 5 or more frames)")
+
+
 def _groundtruth(rec: dict, paths: dict, data: list[str]):
     """The ground truth of a record, in its boxes' origin: a run folder's dataset (1-based, as
     its result files), or the ``--data`` folder of a record of before (0-based)."""
@@ -383,8 +427,13 @@ def main() -> None:
     e.add_argument("--out", default=DEFAULT_OUT)
     e.add_argument("--seeds", default=None, help="as for run (default: every seed run)")
     e.add_argument("--data", nargs="+", default=None, help="data folders (only for a sweep folder of before)")
+    lo = sub.add_parser("losses")
+    lo.add_argument("tag")
+    lo.add_argument("--out", default=DEFAULT_OUT)
+    lo.add_argument("--seeds", default=None, help="as for run (default: every seed run)")
+    lo.add_argument("--data", nargs="+", default=None, help="data folders (only for a sweep folder of before)")
     args = ap.parse_args()
-    {"run": run, "show": show, "errors": errors}[args.cmd](args)
+    {"run": run, "show": show, "errors": errors, "losses": losses}[args.cmd](args)
 
 
 if __name__ == "__main__":

@@ -201,3 +201,22 @@ def test_run_makes_an_evaluate_run_folder_per_data_folder_and_refuses_another_co
     assert sorted(sweep._load(tmp_path / "runs" / "T", None)) == [("Demo", 0), ("Demo", 1)]
     with pytest.raises(SystemExit, match="other settings"):
         sweep.run(argparse.Namespace(**{**vars(args), "config": '{"n_particles": 30}'}))
+
+
+def test_loss_spans_are_the_runs_of_frames_under_a_tenth(gt):
+    boxes = gt.copy()
+    far = gt + np.column_stack([10 * gt[:, 2], 0 * gt[:, 1:]])  # no overlap at all
+    boxes[10:14] = far[10:14]  # 4 frames: too short to count
+    boxes[20:26] = far[20:26]  # 6 frames, recovered after
+    boxes[33:] = far[33:]  # lost to the end
+    assert sweep.loss_spans(boxes, gt) == [(21, 6, False), (34, 7, True)]
+    assert sweep.loss_spans(boxes, gt, least=4) == [(11, 4, False), (21, 6, False), (34, 7, True)]
+    assert sweep.loss_spans(gt, gt) == []
+
+
+def test_an_invalid_truth_frame_neither_counts_nor_breaks_a_span(gt):
+    # frame 8 (index 7) has no valid truth: a span over it is one span of the valid frames
+    boxes = gt + np.column_stack([10 * gt[:, 2], 0 * gt[:, 1:]])
+    boxes[:4] = gt[:4]
+    boxes[12:] = gt[12:]
+    assert sweep.loss_spans(boxes, gt) == [(5, 7, False)]
