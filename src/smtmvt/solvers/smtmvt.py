@@ -463,7 +463,7 @@ def _huber_step(X, D, C, UR, rho, gamma):
 
 def _rescale(factor, rho, scaled) -> None:
     """Residual balancing's change of penalty, in place: ``rho *= factor`` (``rho`` the
-    ``(n,)`` array of the candidates' penalties: an array, so that the caller's changes)
+    ``(n,)`` array of the candidates' penalties, changed in place: the caller's too)
     and each of the ``scaled`` (scaled duals, their ``D'`` products) divided by it."""
     rho *= factor
     for u in scaled:
