@@ -11,6 +11,7 @@ from smtmvt.correlation import (
     CELL,
     CorrelationFilter,
     apce,
+    cell_features,
     clears,
     correlation_cost,
     gaussian_label,
@@ -123,6 +124,52 @@ def test_orientation_channels_see_the_gradients_direction():
     for img, expected in ((vertical, 0), (horizontal, 4)):
         energy = window_features(img, win)[1:].sum(axis=(1, 2))
         assert np.argmax(energy) == expected and energy[expected] > 0.8 * energy.sum()
+
+
+def _numpy_cell_features(img):
+    """The cell features as numpy expressions (the compiled code's reference):
+    central differences, float32 ``hypot`` and ``atan2`` binning, cell sums."""
+    orientations = 9
+    img = np.asarray(img, dtype=np.float32)
+    H, W = img.shape[-2:]
+    gx, gy = np.zeros_like(img), np.zeros_like(img)
+    gx[..., :, 1:-1] = img[..., :, 2:] - img[..., :, :-2]
+    gy[..., 1:-1, :] = img[..., 2:, :] - img[..., :-2, :]
+    mag = np.hypot(gx, gy)
+    b = np.minimum((np.mod(np.arctan2(gy, gx), np.pi) * (orientations / np.pi)).astype(np.intp), orientations - 1)
+    lead = img.shape[:-2]
+    energy = np.zeros((*lead, orientations, H, W), np.float32)
+    np.put_along_axis(energy, b[..., None, :, :], mag[..., None, :, :], axis=-3)
+    n = np.float32(CELL * CELL)
+    cells = energy.reshape(*lead, orientations, H // CELL, CELL, W // CELL, CELL).sum(axis=(-3, -1)) / n
+    mean = img.reshape(*lead, H // CELL, CELL, W // CELL, CELL).sum(axis=(-3, -1)) / n - 0.5
+    return np.concatenate([mean[..., None, :, :], np.sqrt(cells)], axis=-3)
+
+
+@pytest.mark.parametrize("kind", ["uniform", "8-bit", "4 levels", "flat", "texture"])
+def test_cell_features_are_numpys_bit_for_bit(kind):
+    # quantized levels put many gradients on exact angles (0, 45, 90 degrees) and
+    # ties; "texture" is a smooth image, whose gradients pass near every bin edge
+    rng = np.random.default_rng(3)
+    for shape in [(8, 8), (36, 52), (120, 44), (2, 3, 24, 28)]:
+        if kind == "uniform":
+            img = rng.random(shape)
+        elif kind == "8-bit":
+            img = rng.integers(0, 256, shape) / 255
+        elif kind == "4 levels":
+            img = rng.integers(0, 4, shape) / 3
+        elif kind == "flat":
+            img = np.full(shape, 0.25)
+        else:
+            img = np.broadcast_to(_texture(*shape[-2:], seed=len(shape)), shape)
+        img = img.astype(np.float32)
+        got = cell_features(img)
+        # numpy itself sums a batch in another order than one image: the reference is per image
+        want = np.stack([_numpy_cell_features(one) for one in img.reshape(-1, *shape[-2:])])
+        want = want.reshape(*shape[:-2], *want.shape[1:])
+        assert got.shape == want.shape == (*shape[:-2], 10, shape[-2] // CELL, shape[-1] // CELL)
+        assert got.dtype == np.float32
+        np.testing.assert_array_equal(got.view(np.uint32), want.view(np.uint32), err_msg=f"{kind} {shape}")
 
 
 def test_features_read_any_frame_type_by_its_white():

@@ -55,10 +55,12 @@ it gains on the mean (``docs/experiments.md#n32``).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import cv2
 import numpy as np
+from numba import njit
 
 from .geometry import box_to_affine
 from .preprocess import white_level
@@ -222,26 +224,118 @@ def cell_features(img: np.ndarray) -> np.ndarray:
     float32: each cell's mean gray level less 0.5, then the square roots of
     its mean gradient magnitude per unsigned orientation bin (no window
     applied). The gradient is the central difference, 0 on the border rows
-    and columns (OpenCV's ``Sobel`` with ``ksize=1``, its border reflected)."""
+    and columns (OpenCV's ``Sobel`` with ``ksize=1``, its border reflected);
+    a pixel's bin is ``floor(mod(atan2(gy, gx), pi) * ORIENTATIONS / pi)``
+    (the last bin closed), its magnitude ``hypot(gx, gy)``, all float32.
+
+    Compiled (:func:`_gradient_bins`, :func:`_cell_sums`) and bit-identical
+    to the same expressions in numpy (``tests/test_correlation.py`` holds
+    that reference): the bins are found by which bin edges the gradient lies
+    beyond, and the few pixels within a relative ``1e-5`` of an edge, where
+    float32 ``atan2``'s rounding decides, by numpy's own expression; the cell
+    sums add each row of a cell, then the rows, as numpy's ``sum`` does on
+    one image (on a batch numpy adds in another order: the last bit of a
+    batch's features, as :mod:`smtmvt.scale` computes them, moved with this
+    code; the tracker's filter computes one window at a time).
+    """
     img = np.asarray(img, dtype=np.float32)
-    H, W = img.shape[-2:]
-    h, w = H // CELL, W // CELL
-    gx = np.zeros_like(img)
-    gy = np.zeros_like(img)
-    gx[..., :, 1:-1] = img[..., :, 2:] - img[..., :, :-2]
-    gy[..., 1:-1, :] = img[..., 2:, :] - img[..., :-2, :]
-    mag = np.hypot(gx, gy)
-    angle = np.mod(np.arctan2(gy, gx), np.pi)
-    b = np.minimum((angle * (ORIENTATIONS / np.pi)).astype(np.intp), ORIENTATIONS - 1)
     lead = img.shape[:-2]
-    energy = np.zeros((*lead, ORIENTATIONS, H, W), np.float32)
-    np.put_along_axis(energy, b[..., None, :, :], mag[..., None, :, :], axis=-3)
-    # cell means as sums over the cell's pixels divided by their number: the
-    # same float32 operations as ``mean(axis=...)``, which costs twice as much
-    n = np.float32(CELL * CELL)
-    cells = energy.reshape(*lead, ORIENTATIONS, h, CELL, w, CELL).sum(axis=(-3, -1)) / n
-    mean = img.reshape(*lead, h, CELL, w, CELL).sum(axis=(-3, -1)) / n - 0.5
-    return np.concatenate([mean[..., None, :, :], np.sqrt(cells)], axis=-3)
+    H, W = img.shape[-2:]
+    images = np.ascontiguousarray(img.reshape(-1, H, W))
+    mag = np.empty_like(images)
+    bins = np.empty(images.shape, np.intp)
+    if _gradient_bins(images, *_EDGE_TRIG, mag, bins):
+        p, y, x = np.nonzero(bins < 0)
+        gx, gy = np.zeros(len(p), np.float32), np.zeros(len(p), np.float32)
+        inner_x, inner_y = (x > 0) & (x < W - 1), (y > 0) & (y < H - 1)
+        p_x, y_x, x_x = p[inner_x], y[inner_x], x[inner_x]
+        p_y, y_y, x_y = p[inner_y], y[inner_y], x[inner_y]
+        gx[inner_x] = images[p_x, y_x, x_x + 1] - images[p_x, y_x, x_x - 1]
+        gy[inner_y] = images[p_y, y_y + 1, x_y] - images[p_y, y_y - 1, x_y]
+        angle = np.mod(np.arctan2(gy, gx), np.pi)
+        bins[p, y, x] = np.minimum((angle * (ORIENTATIONS / np.pi)).astype(np.intp), ORIENTATIONS - 1)
+    out = np.empty((len(images), ORIENTATIONS + 1, H // CELL, W // CELL), np.float32)
+    _cell_sums(images, mag, bins, out)
+    return out.reshape(*lead, *out.shape[1:])
+
+
+#: cosines and sines of the bin edges ``i pi / ORIENTATIONS``, ``i = 0 .. ORIENTATIONS``
+_EDGE_TRIG = (
+    np.cos(np.arange(ORIENTATIONS + 1) * (np.pi / ORIENTATIONS)),
+    np.sin(np.arange(ORIENTATIONS + 1) * (np.pi / ORIENTATIONS)),
+)
+#: relative distance to a bin edge within which numpy's float32 angle decides
+_NEAR_EDGE = 1e-5
+
+
+@njit(cache=True, nogil=True, boundscheck=False)
+def _gradient_bins(images, cos_e, sin_e, mag, bins):  # pragma: no cover - compiled
+    """Each pixel's gradient magnitude (float32 ``hypot``) into ``mag`` and its
+    orientation bin into ``bins`` (``(n, H, W)`` each), ``-1`` where the
+    gradient lies within ``_NEAR_EDGE`` of a bin edge (0 and pi included);
+    returns how many such pixels. The gradient is folded into the upper
+    half-plane (its orientation is modulo pi); its bin is the number of
+    interior edges it lies beyond; a zero vertical gradient is bin 0."""
+    n, H, W = images.shape
+    near = 0
+    for p in range(n):
+        for y in range(H):
+            for x in range(W):
+                gx = np.float32(0.0)
+                gy = np.float32(0.0)
+                if 0 < x < W - 1:
+                    gx = images[p, y, x + 1] - images[p, y, x - 1]
+                if 0 < y < H - 1:
+                    gy = images[p, y + 1, x] - images[p, y - 1, x]
+                mag[p, y, x] = np.float32(math.hypot(gx, gy))
+                if gy == 0.0:
+                    bins[p, y, x] = 0
+                    continue
+                a, b = np.float64(gy), np.float64(gx)
+                if a < 0.0:
+                    a, b = -a, -b
+                tol = _NEAR_EDGE * math.sqrt(a * a + b * b)
+                count = -1
+                if a > tol:
+                    count = 0
+                    for i in range(1, cos_e.shape[0] - 1):
+                        d = a * cos_e[i] - b * sin_e[i]
+                        if abs(d) <= tol:
+                            count = -1
+                            break
+                        count += d >= 0.0
+                bins[p, y, x] = count
+                near += count < 0
+    return near
+
+
+@njit(cache=True, nogil=True, boundscheck=False)
+def _cell_sums(images, mag, bins, out):  # pragma: no cover - compiled
+    """``out[p, 0]``: each cell's mean gray level less 0.5; ``out[p, 1 + k]``:
+    the square root of its mean magnitude in bin ``k``; float32 sums of
+    each of the cell's rows, then of the rows (numpy's order)."""
+    n, H, W = images.shape
+    count = np.float32(CELL * CELL)
+    total = np.zeros(ORIENTATIONS, np.float32)
+    row = np.zeros(ORIENTATIONS, np.float32)
+    for p in range(n):
+        for i in range(H // CELL):
+            for j in range(W // CELL):
+                total[:] = 0.0
+                gray = np.float32(0.0)
+                for dy in range(CELL):
+                    row[:] = 0.0
+                    gray_row = np.float32(0.0)
+                    y = i * CELL + dy
+                    for dx in range(CELL):
+                        row[bins[p, y, j * CELL + dx]] += mag[p, y, j * CELL + dx]
+                        gray_row += images[p, y, j * CELL + dx]
+                    for k in range(ORIENTATIONS):
+                        total[k] += row[k]
+                    gray += gray_row
+                out[p, 0, i, j] = gray / count - np.float32(0.5)
+                for k in range(ORIENTATIONS):
+                    out[p, 1 + k, i, j] = math.sqrt(total[k] / count)
 
 
 def gaussian_label(cells_shape, box_cells: float) -> np.ndarray:
