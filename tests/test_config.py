@@ -52,7 +52,6 @@ DEFAULTS = {
     "template_learn_memory": 20,
     "template_learn_floor": 0.4,
     "correlation_rate": 0.02,
-    "correlation_color": False,
     "correlation_first": 0.0,
     "correlation_usual_peak": True,  # the default since stop 46 (docs/experiments.md#n47)
     "redetect_after": 10,
@@ -253,7 +252,6 @@ REFUSED = {
     "background_weight": -0.1,
     "background_samples": 0,
     "background_measure": "farthest",
-    "correlation_color": "yes",
     "correlation_first": 2.0,
     "scale_push": -1.0,
     "scale_filter": 1.5,

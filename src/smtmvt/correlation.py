@@ -78,7 +78,6 @@ __all__ = [
     "window_features",
     "cell_features",
     "gray_part",
-    "chroma_part",
     "gaussian_label",
     "Filter",
     "train",
@@ -177,30 +176,12 @@ def gray_part(frame: np.ndarray, x0: int, y0: int, x1: int, y1: int) -> np.ndarr
     return np.ascontiguousarray(np.clip(gray / white_level(f), 0.0, 1.0), dtype=np.float32)
 
 
-def chroma_part(frame: np.ndarray, x0: int, y0: int, x1: int, y1: int) -> np.ndarray:
-    """The frame's two opponent chroma channels on the part :func:`gray_part`
-    reads, ``(y1 - y0, x1 - x0, 2)`` float32: ``(c0 - c1) / sqrt(2)`` and
-    ``(c0 + c1 - 2 c2) / sqrt(6)`` of its first three channels over
-    :func:`smtmvt.preprocess.white_level` (0 for a gray frame); the order of
-    the channels (RGB or BGR) flips their signs only."""
-    f = np.asarray(frame)
-    rows = np.clip(np.arange(y0, y1), 0, f.shape[0] - 1)
-    cols = np.clip(np.arange(x0, x1), 0, f.shape[1] - 1)
-    if f.ndim == 2 or f.shape[2] < 3:
-        return np.zeros((y1 - y0, x1 - x0, 2), np.float32)
-    crop = np.clip(f[rows][:, cols][:, :, :3].astype(np.float32) / white_level(f), 0.0, 1.0)
-    a = (crop[:, :, 0] - crop[:, :, 1]) / np.float32(np.sqrt(2.0))
-    b = (crop[:, :, 0] + crop[:, :, 1] - 2.0 * crop[:, :, 2]) / np.float32(np.sqrt(6.0))
-    return np.ascontiguousarray(np.stack([a, b], axis=-1), dtype=np.float32)
-
-
-def _resample(frame: np.ndarray, window: Window, part_of=gray_part) -> np.ndarray:
+def _resample(frame: np.ndarray, window: Window) -> np.ndarray:
     """The frame's gray level (the mean of its channels, in [0, 1]) on the
     window's pixels, ``(H, W)`` float32, the frame smoothed first where the
     window is coarser than the frame (anti-aliasing) and its border
     replicated outside it. Only the part of the frame the window reads is
-    converted; a fourth (alpha) channel is left out. ``part_of``: the
-    conversion (:func:`gray_part`; :func:`chroma_part` gives ``(H, W, 2)``)."""
+    converted; a fourth (alpha) channel is left out."""
     H, W = window.size
     sx, sy = window.step
     x0, y0 = window.origin
@@ -208,7 +189,7 @@ def _resample(frame: np.ndarray, window: Window, part_of=gray_part) -> np.ndarra
     margin = 3.0 * max(sx, sy, 1.0)
     fx0, fy0 = int(np.floor(x0 - margin)), int(np.floor(y0 - margin))
     fx1, fy1 = int(np.ceil(x0 + (W - 1) * sx + margin)) + 1, int(np.ceil(y0 + (H - 1) * sy + margin)) + 1
-    part = part_of(frame, fx0, fy0, fx1, fy1)
+    part = gray_part(frame, fx0, fy0, fx1, fy1)
     s = max(sx, sy)
     if s > 1.0:
         part = cv2.GaussianBlur(part, (0, 0), sigmaX=0.5 * sx if sx > 1 else 0.3, sigmaY=0.5 * sy if sy > 1 else 0.3)
@@ -223,9 +204,8 @@ def _hann(shape) -> np.ndarray:
     return np.outer(np.hanning(shape[0] + 2)[1:-1], np.hanning(shape[1] + 2)[1:-1]).astype(np.float32)
 
 
-def window_features(frame: np.ndarray, window: Window, color: bool = False) -> np.ndarray:
-    """Cell features of the window, ``(C, h, w)`` float32, ``C = ORIENTATIONS + 1``
-    (``+ 2`` with ``color``: each cell's mean of the two :func:`chroma_part` channels).
+def window_features(frame: np.ndarray, window: Window) -> np.ndarray:
+    """Cell features of the window, ``(C, h, w)`` float32, ``C = ORIENTATIONS + 1``.
 
     ``frame`` : (H, W) or (H, W, C) image, uint8, uint16 or float
     (:func:`smtmvt.preprocess.white_level`); its gray level is the mean of its channels (independent
@@ -235,11 +215,6 @@ def window_features(frame: np.ndarray, window: Window, color: bool = False) -> n
     cells.
     """
     feats = cell_features(_resample(frame, window))
-    if color:
-        chroma = _resample(frame, window, chroma_part)
-        H, W = chroma.shape[:2]
-        means = chroma.reshape(H // CELL, CELL, W // CELL, CELL, 2).mean(axis=(1, 3)).transpose(2, 0, 1)
-        feats = np.concatenate([feats, means.astype(np.float32)])
     return feats * _hann(feats.shape[1:])[None]
 
 
@@ -500,10 +475,8 @@ class CorrelationFilter:
     ``(x + (w - 1) / 2, y + (h - 1) / 2)`` (:func:`smtmvt.geometry.box_to_affine`'s).
     """
 
-    def __init__(self, frame: np.ndarray, box, color: bool = False) -> None:
+    def __init__(self, frame: np.ndarray, box) -> None:
         b = np.asarray(box, dtype=np.float64)
-        #: whether the features hold the two chroma channels (:func:`window_features`)
-        self.color = bool(color)
         self.size = window_shape(b)
         h, w = self.size[0] // CELL, self.size[1] // CELL
         self._label = gaussian_label((h, w), BOX_PIXELS / CELL)
@@ -547,7 +520,7 @@ class CorrelationFilter:
         return window_at(box_to_affine(b)[4:], b[2:4], self.size)
 
     def _features(self, frame: np.ndarray, box) -> np.ndarray:
-        return window_features(frame, self._window(box), self.color)
+        return window_features(frame, self._window(box))
 
     def response(self, frame: np.ndarray, box, first: float = 0.0) -> tuple[np.ndarray, Window]:
         """The response ``(h, w)`` over the window about ``box`` in ``frame``, and the window.
@@ -557,7 +530,7 @@ class CorrelationFilter:
         which no update changes), on the same window's features.
         """
         window = self._window(box)
-        features = window_features(frame, window, self.color)
+        features = window_features(frame, window)
         r = respond(self.model, features)
         if first:
             r = (1.0 - first) * r + first * respond(self.first, features)

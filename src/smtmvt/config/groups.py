@@ -301,9 +301,6 @@ class ExperimentalConfig(Group):
     background_measure: str = option(
         "nearest", Choice(("nearest", "nnls")), "The background term's ``b_i``: nearest box or NNLS."
     )
-    correlation_color: bool = option(
-        False, Flag(), "The correlation filter also reads two chroma channels (docs/experiments.md#n56)."
-    )
     correlation_first: float = option(
         0.0, Real(0, 1), "Share of the first box's filter in the correlation response (docs/experiments.md#n36)."
     )
