@@ -301,9 +301,6 @@ class ExperimentalConfig(Group):
     background_measure: str = option(
         "nearest", Choice(("nearest", "nnls")), "The background term's ``b_i``: nearest box or NNLS."
     )
-    correlation_mean_start: bool = option(
-        False, Flag(), "The filter's rate is 1 / (frames learned + 1) until it falls to ``correlation_rate``."
-    )
     correlation_first: float = option(
         0.0, Real(0, 1), "Share of the first box's filter in the correlation response (docs/experiments.md#n36)."
     )

@@ -49,7 +49,6 @@ class CorrelationCue(Cue):
         #: the correlation responses' mean peak before this frame (config.correlation_usual_peak)
         self.peak_ref: float | None = None
         self.last_learned = np.zeros(6)  # the last state the filter learned from
-        self.learned = 0  # frames the filter learned from after the first
 
     @classmethod
     def from_config(cls, config, weight: float = 0.0) -> CorrelationCue | None:
@@ -60,7 +59,6 @@ class CorrelationCue(Cue):
         self.filter = CorrelationFilter(start.frame, start.box)
         self.scale = start.sampler.scale
         self.last_learned = start.state.copy()
-        self.learned = 0
 
     def _input_box(self, states) -> np.ndarray:
         """Working-frame states ``(6,)`` or ``(n, 6)`` -> their boxes, input-frame pixels."""
@@ -200,9 +198,6 @@ class CorrelationCue(Cue):
         assert self.filter is not None
         if self.learns(scene.judged, choice.state, scene.response):
             self.last_learned = choice.state.copy()
-            rate = self.config.correlation_rate
-            if self.config.correlation_mean_start:
-                # the mean of the filters learned so far until it falls to the rate
-                rate = max(rate, 1.0 / (self.learned + 2))
-            self.learned += 1
-            self.filter.update(scene.frame, np.asarray(choice.work_box) / np.tile(self.scale, 2), rate)
+            self.filter.update(
+                scene.frame, np.asarray(choice.work_box) / np.tile(self.scale, 2), self.config.correlation_rate
+            )
