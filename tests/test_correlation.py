@@ -15,6 +15,7 @@ from smtmvt.correlation import (
     clears,
     correlation_cost,
     gaussian_label,
+    gray_part,
     peak_point,
     relative_scores,
     respond,
@@ -26,6 +27,7 @@ from smtmvt.correlation import (
 )
 from smtmvt.demo import make_demo_sequence
 from smtmvt.geometry import affine_to_box, box_to_affine
+from smtmvt.preprocess import white_level
 
 
 def _texture(h=240, w=320, seed=0):
@@ -170,6 +172,31 @@ def test_cell_features_are_numpys_bit_for_bit(kind):
         assert got.shape == want.shape == (*shape[:-2], 10, shape[-2] // CELL, shape[-1] // CELL)
         assert got.dtype == np.float32
         np.testing.assert_array_equal(got.view(np.uint32), want.view(np.uint32), err_msg=f"{kind} {shape}")
+
+
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda rng, s: rng.integers(0, 256, (*s, 3), dtype=np.uint8),
+        lambda rng, s: rng.integers(0, 65536, (*s, 3), dtype=np.uint16),
+        lambda rng, s: rng.random((*s, 3), dtype=np.float32),
+        lambda rng, s: rng.random((*s, 4)),
+        lambda rng, s: rng.random((*s, 3)) * 255,
+        lambda rng, s: rng.integers(0, 256, s, dtype=np.uint8),
+    ],
+    ids=["uint8", "uint16", "float32", "float64 RGBA", "float64 0-255", "gray"],
+)
+def test_gray_part_is_numpys_channel_mean_bit_for_bit(make):
+    rng = np.random.default_rng(5)
+    frame = make(rng, (40, 60))
+    for x0, y0, x1, y1 in [(5, 7, 30, 33), (-6, -4, 20, 12), (50, 30, 75, 52)]:  # inside, over two borders
+        rows, cols = np.clip(np.arange(y0, y1), 0, 39), np.clip(np.arange(x0, x1), 0, 59)
+        crop = frame[rows][:, cols].astype(np.float32)
+        gray = crop if crop.ndim == 2 else crop[:, :, :3].mean(axis=2)
+        want = np.clip(gray / white_level(frame), 0.0, 1.0).astype(np.float32)
+        got = gray_part(frame, x0, y0, x1, y1)
+        assert got.shape == (y1 - y0, x1 - x0) and got.dtype == np.float32
+        np.testing.assert_array_equal(got.view(np.uint32), want.view(np.uint32))
 
 
 def test_features_read_any_frame_type_by_its_white():

@@ -171,8 +171,16 @@ def gray_part(frame: np.ndarray, x0: int, y0: int, x1: int, y1: int) -> np.ndarr
     f = np.asarray(frame)
     rows = np.clip(np.arange(y0, y1), 0, f.shape[0] - 1)
     cols = np.clip(np.arange(x0, x1), 0, f.shape[1] - 1)
-    crop = f[rows][:, cols].astype(np.float32)
-    gray = crop if crop.ndim == 2 else crop[:, :, :3].mean(axis=2)
+    crop = f[rows][:, cols]
+    if crop.ndim == 2:
+        gray = crop.astype(np.float32)
+    else:
+        # numpy's float32 mean over the channels, summed in its order ((c0 + c1) + c2)
+        # without its strided reduction, which costs twice as much
+        gray = crop[:, :, 0].astype(np.float32)
+        gray += crop[:, :, 1].astype(np.float32)
+        gray += crop[:, :, 2].astype(np.float32)
+        gray /= np.float32(3.0)
     return np.ascontiguousarray(np.clip(gray / white_level(f), 0.0, 1.0), dtype=np.float32)
 
 
