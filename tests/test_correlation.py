@@ -174,6 +174,11 @@ def test_cell_features_are_numpys_bit_for_bit(kind):
         np.testing.assert_array_equal(got.view(np.uint32), want.view(np.uint32), err_msg=f"{kind} {shape}")
 
 
+def test_cell_features_refuse_sides_that_are_not_whole_cells():
+    with pytest.raises(ValueError, match="multiples of 4, got 10 x 12"):
+        cell_features(np.zeros((10, 12), np.float32))
+
+
 @pytest.mark.parametrize(
     "make",
     [

@@ -249,6 +249,8 @@ def cell_features(img: np.ndarray) -> np.ndarray:
     img = np.asarray(img, dtype=np.float32)
     lead = img.shape[:-2]
     H, W = img.shape[-2:]
+    if H % CELL or W % CELL or not (H and W):
+        raise ValueError(f"cell features need images whose sides are multiples of {CELL}, got {H} x {W}")
     images = np.ascontiguousarray(img.reshape(-1, H, W))
     mag = np.empty_like(images)
     bins = np.empty(images.shape, np.intp)
