@@ -485,14 +485,12 @@ class CorrelationFilter:
     ``(x + (w - 1) / 2, y + (h - 1) / 2)`` (:func:`smtmvt.geometry.box_to_affine`'s).
     """
 
-    def __init__(self, frame: np.ndarray, box, context: bool = False) -> None:
+    def __init__(self, frame: np.ndarray, box) -> None:
         b = np.asarray(box, dtype=np.float64)
         self.size = window_shape(b)
         h, w = self.size[0] // CELL, self.size[1] // CELL
         self._label = gaussian_label((h, w), BOX_PIXELS / CELL)
-        #: whether each filter also learns to answer 0 on four context windows (CACF)
-        self.context = bool(context)
-        self.model = self._train(frame, b)
+        self.model = train(self._features(frame, b), self._label)
         #: the filter of the first box, never updated (:meth:`response`'s ``first``)
         self.first = self.model
         #: (peak, APCE) of each response judged by :meth:`judge`
@@ -554,22 +552,6 @@ class CorrelationFilter:
         response with no positive peak)."""
         return relative_scores(*self.response(frame, box), centres)
 
-    def _train(self, frame: np.ndarray, box) -> Filter:
-        """The filter of ``box``; with :attr:`context` its denominator also holds
-        the mean energy spectrum of the windows moved one box size up, down,
-        left and right (Mueller et al., CVPR 2017: context patches whose
-        desired response is 0)."""
-        b = np.asarray(box, dtype=np.float64)
-        model = train(self._features(frame, b), self._label)
-        if not self.context:
-            return model
-        energy = np.zeros_like(model.B)
-        for dx, dy in ((-1, 0), (1, 0), (0, -1), (0, 1)):
-            moved = b + np.array([dx * b[2], dy * b[3], 0.0, 0.0])
-            F = np.fft.fft2(self._features(frame, moved), axes=(-2, -1))
-            energy += np.sum(np.abs(F) ** 2, axis=0)
-        return Filter(model.A, model.B + energy / 4.0)
-
     def update(self, frame: np.ndarray, box, rate: float = LEARNING_RATE) -> None:
         """Blend in the filter trained on ``box`` in ``frame`` at ``rate``."""
-        self.model = blend(self.model, self._train(frame, box), rate)
+        self.model = blend(self.model, train(self._features(frame, box), self._label), rate)

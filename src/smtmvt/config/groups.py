@@ -301,9 +301,6 @@ class ExperimentalConfig(Group):
     background_measure: str = option(
         "nearest", Choice(("nearest", "nnls")), "The background term's ``b_i``: nearest box or NNLS."
     )
-    correlation_context: bool = option(
-        False, Flag(), "The filter also learns to answer 0 on four context windows (docs/experiments.md#n59)."
-    )
     correlation_first: float = option(
         0.0, Real(0, 1), "Share of the first box's filter in the correlation response (docs/experiments.md#n36)."
     )

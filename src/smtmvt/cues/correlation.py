@@ -56,7 +56,7 @@ class CorrelationCue(Cue):
 
     def start(self, start: Start) -> None:
         # on the frame as given (not the working frame)
-        self.filter = CorrelationFilter(start.frame, start.box, self.config.correlation_context)
+        self.filter = CorrelationFilter(start.frame, start.box)
         self.scale = start.sampler.scale
         self.last_learned = start.state.copy()
 
