@@ -8,8 +8,10 @@ from scipy import ndimage
 from jump_sequences import jump_sequence
 from smtmvt import Tracker, TrackerConfig
 from smtmvt.correlation import (
+    _INNER_EDGES,
     CELL,
     CorrelationFilter,
+    _gradient_bins,
     apce,
     cell_features,
     clears,
@@ -148,10 +150,11 @@ def _numpy_cell_features(img):
     return np.concatenate([mean[..., None, :, :], np.sqrt(cells)], axis=-3)
 
 
-@pytest.mark.parametrize("kind", ["uniform", "8-bit", "4 levels", "flat", "texture"])
+@pytest.mark.parametrize("kind", ["uniform", "8-bit", "4 levels", "flat", "texture", "on edges"])
 def test_cell_features_are_numpys_bit_for_bit(kind):
     # quantized levels put many gradients on exact angles (0, 45, 90 degrees) and
-    # ties; "texture" is a smooth image, whose gradients pass near every bin edge
+    # ties; "texture" is a smooth image; "on edges" ramps whose gradients lie on the
+    # bin edges at 20 and 140 degrees, where numpy's own atan2 must decide
     rng = np.random.default_rng(3)
     for shape in [(8, 8), (36, 52), (120, 44), (2, 3, 24, 28)]:
         if kind == "uniform":
@@ -162,9 +165,17 @@ def test_cell_features_are_numpys_bit_for_bit(kind):
             img = rng.integers(0, 4, shape) / 3
         elif kind == "flat":
             img = np.full(shape, 0.25)
-        else:
+        elif kind == "texture":
             img = np.broadcast_to(_texture(*shape[-2:], seed=len(shape)), shape)
+        else:
+            y, x = np.mgrid[0 : shape[-2], 0 : shape[-1]].astype(np.float64)
+            ramps = 0.005 * np.where(y < shape[-2] // 2, x + np.tan(np.pi / 9) * y, 100 - x + np.tan(np.pi / 9 * 2) * y)
+            img = np.broadcast_to(ramps, shape)
         img = img.astype(np.float32)
+        if kind == "on edges":  # the case reaches the pixels left to numpy's angle
+            flat = np.ascontiguousarray(img.reshape(-1, *shape[-2:]))
+            mag, bins = np.empty_like(flat), np.empty(flat.shape, np.intp)
+            assert _gradient_bins(flat, *_INNER_EDGES, mag, bins) > 0
         got = cell_features(img)
         # numpy itself sums a batch in another order than one image: the reference is per image
         want = np.stack([_numpy_cell_features(one) for one in img.reshape(-1, *shape[-2:])])

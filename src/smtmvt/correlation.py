@@ -254,14 +254,13 @@ def cell_features(img: np.ndarray) -> np.ndarray:
     images = np.ascontiguousarray(img.reshape(-1, H, W))
     mag = np.empty_like(images)
     bins = np.empty(images.shape, np.intp)
-    if _gradient_bins(images, *_EDGE_TRIG, mag, bins):
+    if _gradient_bins(images, *_INNER_EDGES, mag, bins):
         p, y, x = np.nonzero(bins < 0)
-        gx, gy = np.zeros(len(p), np.float32), np.zeros(len(p), np.float32)
-        inner_x, inner_y = (x > 0) & (x < W - 1), (y > 0) & (y < H - 1)
-        p_x, y_x, x_x = p[inner_x], y[inner_x], x[inner_x]
-        p_y, y_y, x_y = p[inner_y], y[inner_y], x[inner_y]
-        gx[inner_x] = images[p_x, y_x, x_x + 1] - images[p_x, y_x, x_x - 1]
-        gy[inner_y] = images[p_y, y_y + 1, x_y] - images[p_y, y_y - 1, x_y]
+        # the central differences at those pixels, 0 on the border rows and columns
+        dx = images[p, y, np.minimum(x + 1, W - 1)] - images[p, y, np.maximum(x - 1, 0)]
+        dy = images[p, np.minimum(y + 1, H - 1), x] - images[p, np.maximum(y - 1, 0), x]
+        gx = np.where((x > 0) & (x < W - 1), dx, np.float32(0.0))
+        gy = np.where((y > 0) & (y < H - 1), dy, np.float32(0.0))
         angle = np.mod(np.arctan2(gy, gx), np.pi)
         bins[p, y, x] = np.minimum((angle * (ORIENTATIONS / np.pi)).astype(np.intp), ORIENTATIONS - 1)
     out = np.empty((len(images), ORIENTATIONS + 1, H // CELL, W // CELL), np.float32)
@@ -269,10 +268,10 @@ def cell_features(img: np.ndarray) -> np.ndarray:
     return out.reshape(*lead, *out.shape[1:])
 
 
-#: cosines and sines of the bin edges ``i pi / ORIENTATIONS``, ``i = 0 .. ORIENTATIONS``
-_EDGE_TRIG = (
-    np.cos(np.arange(ORIENTATIONS + 1) * (np.pi / ORIENTATIONS)),
-    np.sin(np.arange(ORIENTATIONS + 1) * (np.pi / ORIENTATIONS)),
+#: cosines and sines of the interior bin edges ``i pi / ORIENTATIONS``, ``i = 1 .. ORIENTATIONS - 1``
+_INNER_EDGES = (
+    np.cos(np.arange(1, ORIENTATIONS) * (np.pi / ORIENTATIONS)),
+    np.sin(np.arange(1, ORIENTATIONS) * (np.pi / ORIENTATIONS)),
 )
 #: relative distance to a bin edge within which numpy's float32 angle decides
 _NEAR_EDGE = 1e-5
@@ -285,7 +284,8 @@ def _gradient_bins(images, cos_e, sin_e, mag, bins):  # pragma: no cover - compi
     gradient lies within ``_NEAR_EDGE`` of a bin edge (0 and pi included);
     returns how many such pixels. The gradient is folded into the upper
     half-plane (its orientation is modulo pi); its bin is the number of
-    interior edges it lies beyond; a zero vertical gradient is bin 0."""
+    interior edges (``cos_e``, ``sin_e``) it lies beyond; a zero vertical
+    gradient is bin 0."""
     n, H, W = images.shape
     near = 0
     for p in range(n):
@@ -308,7 +308,7 @@ def _gradient_bins(images, cos_e, sin_e, mag, bins):  # pragma: no cover - compi
                 count = -1
                 if a > tol:
                     count = 0
-                    for i in range(1, cos_e.shape[0] - 1):
+                    for i in range(cos_e.shape[0]):
                         d = a * cos_e[i] - b * sin_e[i]
                         if abs(d) <= tol:
                             count = -1
