@@ -64,6 +64,7 @@ STEPS: list[tuple[str, tuple[str, ...], str]] = [
         ("correlation_weight", "correlation_particles", "correlation_learn_gate", "correlation_usual_peak"),
         "adds: a term and a proposal the paper does not have",
     ),
+    ("camera-motion", ("camera_motion",), "adds: a second prediction, moved with the camera, the filter chooses"),
     ("template-gate", ("template_learn_gate",), "adds: a test before the paper's template update"),
     ("redetect", ("redetect_after",), "adds: a wider search the paper does not have"),
     ("report-box", ("report_aspect", "report_scale"), "silent: the box reported for the state"),

@@ -55,6 +55,7 @@ DEFAULTS = {
     "correlation_first": 0.0,
     "correlation_usual_peak": True,  # the default since stop 46 (docs/experiments.md#n47)
     "redetect_after": 10,
+    "camera_motion": True,
     "motion_weight": 1.0,
     "scale_push": 0.0,
     "scale_filter": 0.0,
@@ -107,6 +108,7 @@ PAPER = {
     "correlation_learn_gate": (0.0, 0.0),
     "template_learn_gate": (0.0, 0.0),
     "redetect_after": 0,
+    "camera_motion": False,
     "motion_weight": 0.0,
     "frame_size": (320, 240),
     "scale_normalize": False,
@@ -203,6 +205,7 @@ REFUSED = {
     "affine_std": (0.01, 0.0, 0.0, 0.01, 8.0),
     "velocity": 1.5,
     "redetect_after": 2.5,
+    "camera_motion": "yes",
     "feature_size": (4, 32),
     "frame_size": (320,),
     "scale_normalize": 1,

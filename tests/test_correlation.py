@@ -352,7 +352,9 @@ def test_particles_placed_at_the_peak_follow_a_jump_the_walk_misses():
     frames, box = jump_sequence(jump=30, n=4, at=1, width=260)
 
     def error_after_the_jump(fraction, seed):
-        t = Tracker(TrackerConfig(correlation_particles=fraction, n_particles=200, seed=seed))
+        # camera_motion off: on this still background the target's own jump is the frame's
+        # largest move, which the camera's hypothesis would follow (tests/test_camera.py)
+        t = Tracker(TrackerConfig(correlation_particles=fraction, n_particles=200, seed=seed, camera_motion=False))
         t.init(frames[0], box)
         t.update(frames[1])
         return abs(t.box[0] - 90.0)  # the target's 0-based x from frame 1 on

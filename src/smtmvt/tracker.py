@@ -34,6 +34,7 @@ import numpy as np
 from threadpoolctl import ThreadpoolController
 
 from .anchor import anchor_residuals
+from .camera import CameraMotion
 from .confidence import LOST_BELOW, confidence
 from .config import TrackerConfig
 from .cues import Choice, CorrelationCue, Cue, Scene, SparseCue, Start, make_cues
@@ -207,6 +208,8 @@ class Tracker:
         self._lost = 0  # frames in a row the target seemed lost (config.redetect_after)
         self._costs: list[float] = []  # the chosen candidates' costs (TrackResult.confidence)
         self._reliability = Reliability(len(self._others)) if cfg.cue_reliability else None
+        # config.camera_motion (it asks the correlation filter)
+        self._camera = CameraMotion(frame) if cfg.camera_motion and self._corr is not None else None
         self._initialized = True
 
     # -- the working frame (config.frame_size) and its planes -----------------
@@ -240,6 +243,7 @@ class Tracker:
         rng_state = self._rng.bit_generator.state
         probe_boxes = np.zeros((0, 4)) if probes is None else np.asarray(probes, dtype=np.float64).reshape(-1, 4)
         probe_states = box_to_affine(self._to_work(probe_boxes)).reshape(-1, 6)
+        kept = (self._state, self._work_box, self._box, self._motion.particles)
         try:
             response = self._response(frame)
             particles = self._propagate(response)
@@ -248,7 +252,12 @@ class Tracker:
             # a frame that cannot be read leaves the tracker as it was
             self._rng.bit_generator.state = rng_state
             self._frame_index -= 1
+            self._state, self._work_box, self._box, self._motion.particles = kept
+            if self._camera is not None:
+                self._camera.dropped()
             raise
+        if self._camera is not None:
+            self._camera.taken()
         scene = self._sample(frame, particles, probe_states, planes, response)
         obs, costs = self._score(scene)
         result, detail = self._choose(scene, obs, probe_boxes)
@@ -278,7 +287,33 @@ class Tracker:
             return None
         with self._timed("likelihood"):
             box = self._from_work(affine_to_box(self._motion.predicted(self._state)))
-            return self._corr.respond(frame, box, self._lost)
+            response = self._corr.respond(frame, box, self._lost)
+            if self._camera is not None:
+                response = self._camera_response(frame, box, response)
+            return response
+
+    def _camera_response(self, frame, box, response: tuple) -> tuple:
+        """``config.camera_motion``: where the camera moved by more than half the
+        box since the last frame (:meth:`smtmvt.camera.CameraMotion.propose`), the
+        filter's response about the prediction ``box`` moved with it; where its
+        peak is the higher, the track (state, boxes, particles) moves with the
+        camera and that response is returned, else ``response``."""
+        assert self._corr is not None and self._corr.filter is not None and self._camera is not None
+        shift = self._camera.propose(frame, box)
+        if shift is None or self._corr.redetected:
+            return response
+        moved = np.asarray(box, dtype=np.float64) + np.array([shift[0], shift[1], 0.0, 0.0])
+        other = self._corr.filter.response(frame, moved, self.config.correlation_first)
+        if not other[0].max() > response[0].max():
+            return response
+        d = shift * self._scale  # working-frame pixels
+        self._state = self._state.copy()
+        self._state[4:] += d
+        self._motion.particles = self._motion.particles.copy()
+        self._motion.particles[:, 4:] += d
+        self._work_box = tuple(float(v) for v in affine_to_box(self._state))
+        self._box = tuple(float(v) for v in np.asarray(self._box) + np.array([shift[0], shift[1], 0.0, 0.0]))
+        return other
 
     def _propagate(self, response=None) -> np.ndarray:
         """Predict: this frame's ``(n, 6)`` particles (:meth:`ParticleFilter.propagate`),

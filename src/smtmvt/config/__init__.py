@@ -282,7 +282,13 @@ def _did_you_mean(name: str) -> str:
 
 #: :meth:`TrackerConfig.paper`'s every field, by group.
 _PAPER: dict[str, dict[str, Any]] = {
-    "motion": dict(n_particles=400, affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0), velocity=0.0, redetect_after=0),
+    "motion": dict(
+        n_particles=400,
+        affine_std=(0.01, 0.0005, 0.0005, 0.01, 8.0, 8.0),
+        velocity=0.0,
+        redetect_after=0,
+        camera_motion=False,
+    ),
     "features": dict(
         views=("intensity", "color", "hog", "lbp"),
         feature_size=(32, 32),

@@ -47,6 +47,13 @@ class MotionConfig(Group):
     redetect_after: int = option(
         10, Whole(0, 100_000), "Weak-peak frames before a wider search, 0 never; paper 0 (docs/experiments.md#n40)."
     )
+    camera_motion: bool = option(
+        True,
+        Flag(),
+        "Where the whole frame moved by more than half the box since the last one (phase correlation),\n"
+        "the track moves with it if the correlation filter's peak is higher there (needs the\n"
+        "correlation cue); paper False (docs/experiments.md#n60).",
+    )
 
 
 @group("features")
