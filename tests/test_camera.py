@@ -109,3 +109,30 @@ def test_a_slowly_panning_camera_leaves_the_boxes_as_without_the_option():
     demo = make_demo_sequence(n_frames=30)  # its camera pans a pixel or two a frame
     frames, box = demo.frames, demo.groundtruth[0]
     assert np.array_equal(_track(frames, box, camera_motion=True), _track(frames, box, camera_motion=False))
+
+
+def _peaked(peak, width):
+    """A (20, 20) response with one Gaussian peak of height ``peak`` and std ``width``
+    cells (a wide peak has a low APCE)."""
+    yy, xx = np.mgrid[0:20, 0:20]
+    return peak * np.exp(-((yy - 10.0) ** 2 + (xx - 10.0) ** 2) / (2 * width**2)), None
+
+
+def test_the_filter_prefers_the_moved_window_only_where_the_prediction_lost_the_target():
+    from smtmvt.correlation import CorrelationFilter, apce
+    from smtmvt.cues import CorrelationCue
+
+    cue = CorrelationCue(TrackerConfig())  # learn gate (0.7, 0.45): peak and APCE against their means
+    frame = _texture((120, 160, 3), seed=6)
+    cue.filter = CorrelationFilter(frame, (60.0, 40.0, 30.0, 30.0))
+    sure, lost, found, weak = _peaked(1.0, 1.0), _peaked(0.3, 1.0), _peaked(0.9, 1.0), _peaked(0.35, 6.0)
+    assert not cue.prefers(lost, found)  # nothing judged before: no mean to judge by
+    cue.filter.history = [(1.0, apce(sure[0]))] * 3
+    assert not cue.prefers(sure, found)  # the prediction holds the target: no move
+    assert cue.prefers(lost, found)  # lost here, a confident peak there
+    assert cue.prefers(lost, weak)  # higher there, though not confident: the camera's move says where
+    assert not cue.prefers(lost, _peaked(0.25, 1.0))  # lower there
+    assert not cue.prefers(found, lost)
+    off = CorrelationCue(TrackerConfig(correlation_learn_gate=(0.0, 0.0)))
+    off.filter, off.filter.history = cue.filter, cue.filter.history
+    assert not off.prefers(lost, found)  # without a gate nothing is judged lost

@@ -295,16 +295,17 @@ class Tracker:
     def _camera_response(self, frame, box, response: tuple) -> tuple:
         """``config.camera_motion``: where the camera moved by more than half the
         box since the last frame (:meth:`smtmvt.camera.CameraMotion.propose`), the
-        filter's response about the prediction ``box`` moved with it; where its
-        peak is the higher, the track (state, boxes, particles) moves with the
-        camera and that response is returned, else ``response``."""
+        filter's response about the prediction ``box`` moved with it; where the
+        filter prefers it (:meth:`CorrelationCue.prefers`: the prediction's
+        response fails the learn gate and the moved one's peak is higher), the track (state, boxes, particles) moves with the camera
+        and that response is returned, else ``response``."""
         assert self._corr is not None and self._corr.filter is not None and self._camera is not None
         shift = self._camera.propose(frame, box)
         if shift is None or self._corr.redetected:
             return response
         moved = np.asarray(box, dtype=np.float64) + np.array([shift[0], shift[1], 0.0, 0.0])
         other = self._corr.filter.response(frame, moved, self.config.correlation_first)
-        if not other[0].max() > response[0].max():
+        if not self._corr.prefers(response, other):
             return response
         d = shift * self._scale  # working-frame pixels
         self._state = self._state.copy()

@@ -50,9 +50,9 @@ class MotionConfig(Group):
     camera_motion: bool = option(
         True,
         Flag(),
-        "Where the whole frame moved by more than half the box since the last one (phase correlation),\n"
-        "the track moves with it if the correlation filter's peak is higher there (needs the\n"
-        "correlation cue); paper False (docs/experiments.md#n60).",
+        "Where the frame moved over half the box since the last (phase correlation) and the filter\n"
+        "seems lost at the prediction, the track moves with it if the filter peaks higher there\n"
+        "(needs the correlation cue); paper False (docs/experiments.md#n60).",
     )
 
 

@@ -110,6 +110,23 @@ class CorrelationCue(Cue):
         now = (float(best[0].max()), apce(best[0]))
         return best if clears((now, past), cfg.correlation_learn_gate) else None
 
+    def prefers(self, response, other) -> bool:
+        """Whether ``other`` (a response over another window, ``(response,
+        Window)``) should replace this frame's ``response``: ``response`` fails
+        ``config.correlation_learn_gate`` against the responses judged before
+        (:func:`clears`; nothing is recorded: the prediction seems to have lost
+        the target) and ``other``'s peak is the higher. False before the first
+        response is judged, and with the gate off."""
+        assert self.filter is not None
+        gate = self.config.correlation_learn_gate
+        if not self.filter.history or not any(gate):
+            return False
+        past = np.mean(self.filter.history, axis=0)
+        here, there = response[0], other[0]
+        if clears(((float(here.max()), apce(here)), past), gate):
+            return False
+        return bool(there.max() > here.max())
+
     def place(self, moved: np.ndarray, rng: np.random.Generator, response) -> tuple[np.ndarray, int, bool]:
         """A proposal for :meth:`smtmvt.particles.ParticleFilter.propagate`:
         ``moved`` (n, 6) with its last ``config.correlation_particles`` share
