@@ -58,6 +58,23 @@ def test_a_move_is_proposed_only_past_half_the_box_and_against_the_frame_taken_l
     assert camera.propose(frame(36), (100.0, 80.0, 20.0, 20.0)) is not None  # past half a smaller box
 
 
+def test_the_hypotheses_are_the_large_move_then_the_last_followed_move_undone():
+    canvas = _texture((300, 400, 3), seed=4)
+    frame = lambda dx: canvas[40:240, 60 - dx : 360 - dx]  # noqa: E731
+    camera = CameraMotion(frame(0))
+    box = (100.0, 80.0, 30.0, 30.0)
+    (shift,) = camera.hypotheses(frame(30), box)  # nothing followed yet: the move alone
+    camera.follow(shift)
+    camera.dropped()  # a frame not read whole follows nothing
+    assert camera.followed is None and len(camera.hypotheses(frame(30), box)) == 1
+    camera.follow(shift)
+    camera.taken()
+    np.testing.assert_array_equal(camera.followed, shift)
+    assert [tuple(h) for h in camera.hypotheses(frame(30), box)] == [tuple(-shift)]  # still: the swing back only
+    camera.taken()  # nothing followed on that frame
+    assert camera.followed is None
+
+
 def _panned_sequence(jump, n=24, at=12, target_moves=True):
     """A checkered 28x32 target on a textured background seen through a 200x260
     window of a larger scene; at frame ``at`` the window jumps ``jump`` px left

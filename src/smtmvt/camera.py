@@ -70,6 +70,9 @@ class CameraMotion:
     def __init__(self, frame: np.ndarray) -> None:
         self.last = reduced_gray(frame)
         self.pending: tuple[np.ndarray, int] | None = None
+        #: the move the track followed on the last frame (``(2,)`` frame pixels), or None
+        self.followed: np.ndarray | None = None
+        self._following: np.ndarray | None = None  # this frame's, until taken
 
     def propose(self, frame: np.ndarray, box) -> np.ndarray | None:
         """The camera's move ``(dx, dy)`` (frame pixels, float64) since the last
@@ -84,11 +87,29 @@ class CameraMotion:
         b = np.asarray(box, dtype=np.float64)
         return shift if np.hypot(*shift) > 0.5 * np.sqrt(b[2] * b[3]) else None
 
+    def hypotheses(self, frame: np.ndarray, box) -> list[np.ndarray]:
+        """The moves to try for this frame, in order: :meth:`propose`'s (where
+        large), then the last frame's followed move undone (a shake swings back,
+        and the blurred frame of the swing can hide it from the phase
+        correlation)."""
+        shift = self.propose(frame, box)
+        out = [] if shift is None else [shift]
+        if self.followed is not None:
+            out.append(-self.followed)
+        return out
+
+    def follow(self, shift: np.ndarray) -> None:
+        """The track follows ``shift`` on this frame (:attr:`followed` once taken)."""
+        self._following = np.asarray(shift, dtype=np.float64)
+
     def taken(self) -> None:
-        """The frame of the last :meth:`propose` becomes the last frame."""
+        """The frame of the last :meth:`propose` becomes the last frame, and its
+        followed move (or None) :attr:`followed`."""
         if self.pending is not None:
             self.last, self.pending = self.pending, None
+        self.followed, self._following = self._following, None
 
     def dropped(self) -> None:
-        """Forget the frame of the last :meth:`propose`."""
+        """Forget the frame of the last :meth:`propose` and any move followed on it."""
         self.pending = None
+        self._following = None

@@ -293,20 +293,28 @@ class Tracker:
             return response
 
     def _camera_response(self, frame, box, response: tuple) -> tuple:
-        """``config.camera_motion``: where the camera moved by more than half the
-        box since the last frame (:meth:`smtmvt.camera.CameraMotion.propose`), the
-        filter's response about the prediction ``box`` moved with it; where the
-        filter prefers it (:meth:`CorrelationCue.prefers`: the prediction's
-        response fails the learn gate and the moved one's peak is higher), the track (state, boxes, particles) moves with the camera
-        and that response is returned, else ``response``."""
+        """``config.camera_motion``: the filter's response about the prediction
+        ``box`` moved by each of the camera's hypotheses
+        (:meth:`smtmvt.camera.CameraMotion.hypotheses`: its move since the last
+        frame where it exceeds half the box, then the last frame's followed move
+        undone); at the first the filter prefers (:meth:`CorrelationCue.prefers`:
+        the prediction's response fails the learn gate and the moved one's peak
+        is higher), the track (state, boxes, particles) moves by it and that
+        response is returned, else ``response``."""
         assert self._corr is not None and self._corr.filter is not None and self._camera is not None
-        shift = self._camera.propose(frame, box)
-        if shift is None or self._corr.redetected:
-            return response
-        moved = np.asarray(box, dtype=np.float64) + np.array([shift[0], shift[1], 0.0, 0.0])
-        other = self._corr.filter.response(frame, moved, self.config.correlation_first)
-        if not self._corr.prefers(response, other):
-            return response
+        for shift in self._camera.hypotheses(frame, box):
+            if self._corr.redetected:
+                break
+            moved = np.asarray(box, dtype=np.float64) + np.array([shift[0], shift[1], 0.0, 0.0])
+            other = self._corr.filter.response(frame, moved, self.config.correlation_first)
+            if self._corr.prefers(response, other):
+                self._move_track(shift)
+                self._camera.follow(shift)
+                return other
+        return response
+
+    def _move_track(self, shift: np.ndarray) -> None:
+        """Move the state, the particles and the boxes by ``shift`` (input-frame pixels)."""
         d = shift * self._scale  # working-frame pixels
         self._state = self._state.copy()
         self._state[4:] += d
@@ -314,7 +322,6 @@ class Tracker:
         self._motion.particles[:, 4:] += d
         self._work_box = tuple(float(v) for v in affine_to_box(self._state))
         self._box = tuple(float(v) for v in np.asarray(self._box) + np.array([shift[0], shift[1], 0.0, 0.0]))
-        return other
 
     def _propagate(self, response=None) -> np.ndarray:
         """Predict: this frame's ``(n, 6)`` particles (:meth:`ParticleFilter.propagate`),

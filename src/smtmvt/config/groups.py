@@ -50,9 +50,9 @@ class MotionConfig(Group):
     camera_motion: bool = option(
         True,
         Flag(),
-        "Where the frame moved over half the box since the last (phase correlation) and the filter\n"
-        "seems lost at the prediction, the track moves with it if the filter peaks higher there\n"
-        "(needs the correlation cue); paper False (docs/experiments.md#n60).",
+        "Where the frame moved over half the box (phase correlation; or swings back after a move\n"
+        "followed) and the filter seems lost at the prediction, the track moves with it if the\n"
+        "filter peaks higher there (needs the correlation cue); paper False (docs/experiments.md#n60).",
     )
 
 
