@@ -302,9 +302,10 @@ class Tracker:
         is higher), the track (state, boxes, particles) moves by it and that
         response is returned, else ``response``."""
         assert self._corr is not None and self._corr.filter is not None and self._camera is not None
-        for shift in self._camera.hypotheses(frame, box):
-            if self._corr.redetected:
-                break
+        hypotheses = self._camera.hypotheses(frame, box)  # (also keeps this frame for the next)
+        if self._corr.redetected:
+            return response
+        for shift in hypotheses:
             moved = np.asarray(box, dtype=np.float64) + np.array([shift[0], shift[1], 0.0, 0.0])
             other = self._corr.filter.response(frame, moved, self.config.correlation_first)
             if self._corr.prefers(response, other):

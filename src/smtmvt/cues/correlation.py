@@ -106,9 +106,15 @@ class CorrelationCue(Cue):
         best = self.filter.response(frame, centred, cfg.correlation_first)
         if not best[0].max() > response[0].max():
             return None
+        return best if self._clears_gate(best[0]) else None
+
+    def _clears_gate(self, r: np.ndarray) -> bool:
+        """Whether the response ``r`` clears ``config.correlation_learn_gate``
+        against the mean of the responses judged before (:func:`clears`), without
+        recording it; needs one judged before."""
+        assert self.filter is not None
         past = np.mean(self.filter.history, axis=0)
-        now = (float(best[0].max()), apce(best[0]))
-        return best if clears((now, past), cfg.correlation_learn_gate) else None
+        return clears(((float(r.max()), apce(r)), past), self.config.correlation_learn_gate)
 
     def prefers(self, response, other) -> bool:
         """Whether ``other`` (a response over another window, ``(response,
@@ -118,14 +124,9 @@ class CorrelationCue(Cue):
         the target) and ``other``'s peak is the higher. False before the first
         response is judged, and with the gate off."""
         assert self.filter is not None
-        gate = self.config.correlation_learn_gate
-        if not self.filter.history or not any(gate):
+        if not self.filter.history or not any(self.config.correlation_learn_gate):
             return False
-        past = np.mean(self.filter.history, axis=0)
-        here, there = response[0], other[0]
-        if clears(((float(here.max()), apce(here)), past), gate):
-            return False
-        return bool(there.max() > here.max())
+        return not self._clears_gate(response[0]) and bool(other[0].max() > response[0].max())
 
     def place(self, moved: np.ndarray, rng: np.random.Generator, response) -> tuple[np.ndarray, int, bool]:
         """A proposal for :meth:`smtmvt.particles.ParticleFilter.propagate`:
