@@ -37,6 +37,7 @@ import numpy as np
 from smtmvt import Tracker, TrackerConfig
 from smtmvt.demo import make_demo_sequence
 from smtmvt.evaluation.metrics import overlap_ratio
+from smtmvt.tracker import track_frames
 
 VARIANTS = ("jerks", "follow", "follow+jerks", "background-jerks")
 
@@ -77,9 +78,7 @@ def seen(frames: np.ndarray, boxes: np.ndarray, offsets: np.ndarray, still: bool
 
 
 def mean_overlap(frames, truth, config: TrackerConfig) -> float:
-    tracker = Tracker(config)
-    tracker.init(frames[0], truth[0])
-    boxes = [truth[0]] + [tracker.update(f).box for f in frames[1:]]
+    boxes = [box for _, box, _ in track_frames(Tracker(config), frames, truth[0])]
     return float(overlap_ratio(np.array(boxes), truth).mean())
 
 

@@ -9,6 +9,7 @@ from smtmvt import Tracker, TrackerConfig
 from smtmvt.camera import SIDE, CameraMotion, frame_shift, reduced_gray
 from smtmvt.demo import make_demo_sequence
 from smtmvt.evaluation.metrics import overlap_ratio
+from smtmvt.tracker import track_frames
 
 
 def _texture(shape, seed):
@@ -103,9 +104,7 @@ def _panned_sequence(jump, n=24, at=12, target_moves=True):
 
 
 def _track(frames, box, **options):
-    tracker = Tracker(TrackerConfig(seed=0, **options))
-    tracker.init(frames[0], box)
-    return np.array([box] + [tracker.update(f).box for f in frames[1:]])
+    return np.array([b for _, b, _ in track_frames(Tracker(TrackerConfig(seed=0, **options)), frames, box)])
 
 
 def test_the_track_follows_a_camera_jerk_that_carries_the_target_out_of_the_window():
