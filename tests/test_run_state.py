@@ -363,3 +363,58 @@ def test_evaluate_killed_at_random_moments_resumes_to_the_uninterrupted_results(
         assert {p: p.stat().st_mtime_ns for p in stamps} == stamps  # kept, not redone
         assert _outside(tmp_path, runs) == outside
     assert interrupted >= len(plan)  # most kills landed while the command was working
+
+
+# ----------------------------------------------------------------------------- a field added later
+
+
+def test_an_experimental_option_at_its_default_is_the_settings_of_before_it_existed():
+    """A record that lacks an experimental option and one that holds it at its default (off)
+    are the same settings; one set, or any other field missing, is a difference."""
+    from smtmvt.evaluation.settings import settings_difference, tracker_settings
+
+    now = tracker_settings(make_tracker("smtmvt", seed=0), {})
+    before = json.loads(json.dumps(now))
+    del before["config"]["scale_filter"]  # experimental, default 0
+    assert settings_difference(before, now) is None
+    filtered = tracker_settings(make_tracker("smtmvt", seed=0, scale_filter=0.5), {"scale_filter": 0.5})
+    assert "config.scale_filter: (unset) -> 0.5" in settings_difference(before, filtered)
+    del before["config"]["camera_motion"]  # not experimental: its absence is a difference
+    assert settings_difference(before, now) == "config.camera_motion: (unset) -> true"
+
+
+def test_a_run_made_before_an_experimental_option_resumes_and_keeps_its_record(tmp_path, capsys):
+    """A folder whose record and result records predate an experimental option: the same
+    command finds its results done (nothing recomputed) and leaves run.json's record as it
+    was; a record that lacks a field that is not experimental is refused as before."""
+    from smtmvt.evaluation.settings import settings_digest
+
+    ds = make_otb_dataset(tmp_path / "otb", n_frames=6)
+    run_dir = tmp_path / "run"
+    args = ("--trackers", "smtmvt", "--sequences", "SquareA", "--tracker-option", "smtmvt:n_particles=20")
+    assert evaluate_cli(ds, run_dir, *args, "--no-report", "--quiet") == 0
+
+    def backdate(field: str) -> None:
+        """Rewrite the folder as a version without ``field`` would have written it."""
+        info = json.loads((run_dir / "run.json").read_text())
+        record = info["tracker_settings"]["smtmvt"]
+        del record["config"][field]
+        (run_dir / "run.json").write_text(json.dumps(info))
+        for meta in (run_dir / "results" / "smtmvt").rglob("meta/*.json"):
+            m = json.loads(meta.read_text())
+            meta.write_text(json.dumps({**m, "settings": settings_digest(record)}))
+
+    backdate("scale_filter")
+    stored = json.loads((run_dir / "run.json").read_text())["tracker_settings"]["smtmvt"]
+    before = result_texts(run_dir)
+    capsys.readouterr()
+    assert evaluate_cli(ds, run_dir, *args, "--no-report") == 0
+    out = capsys.readouterr().out
+    assert "1 already done" in out and "recomputing" not in out
+    assert result_texts(run_dir) == before
+    assert json.loads((run_dir / "run.json").read_text())["tracker_settings"]["smtmvt"] == stored
+
+    backdate("camera_motion")
+    assert evaluate_cli(ds, run_dir, *args, "--no-report", "--quiet") == 2
+    assert "config.camera_motion: (unset) -> true" in capsys.readouterr().err
+    assert result_texts(run_dir) == before

@@ -618,7 +618,11 @@ class RunDir:
                 steps.insert(0, "repeat the settings it was made with to resume it")
             raise RunDirError(f"{self.root}: {why}. Either {', '.join(steps[:-1])}, or {steps[-1]}")
         notes = [self._wipe_tracker(name) for name in clashes]
-        info.tracker_settings.update(settings)
+        # a record the same as the stored one (settings_difference) stays as stored: the results'
+        # records hold its digest
+        info.tracker_settings.update(
+            {name: r for name, r in settings.items() if name in clashes or name not in info.tracker_settings}
+        )
         return notes
 
     def _tracker_clash(self, info: RunInfo, name: str, record: dict) -> str | None:

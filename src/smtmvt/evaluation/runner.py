@@ -454,7 +454,9 @@ def _plan(
         if problem:
             book.record(spec.name, None, problem)
             continue
-        digest = settings_digest(settings)
+        # the digest of the record run.json keeps (the same settings, perhaps written before
+        # an experimental option was added: RunDir.settle)
+        digest = settings_digest(book.info.tracker_settings.get(spec.name, settings))
         for seq in seqs:
             for r in range(1 if spec.deterministic else book.info.repeat):
                 for protocol, runs in starts[seq.name].items():

@@ -16,6 +16,12 @@ the form of the records made before it had groups) without its ``seed`` (each pa
 OpenCV tracker has none (its options and OpenCV's version settle it). Every value is JSON
 (a value JSON cannot hold is kept as its ``repr``), so a record read back from ``run.json``
 compares equal to a new one exactly when the settings are the same.
+
+One exception (:func:`settings_difference`): an experimental option
+(:class:`~smtmvt.config.ExperimentalConfig`) at its default is the tracker without that
+option, so a record that lacks it (made before the option existed) and one that holds it at
+its default are the same settings: adding an experimental option does not stop the run
+folders made before it from resuming. Any other field that one record lacks is a difference.
 """
 
 from __future__ import annotations
@@ -65,13 +71,32 @@ def settings_digest(record: dict) -> str:
 def settings_difference(old: dict, new: dict, limit: int = 6) -> str | None:
     """None when ``old`` and ``new`` are the same settings; otherwise what differs, as
     ``"options.detect_thresh: 0.3 -> 0.2; versions.opencv: 4.9.0 -> 4.10.0"`` (at most
-    ``limit`` items; ``(unset)`` for a key one side lacks)."""
-    old, new = _as_json(old), _as_json(new)
+    ``limit`` items; ``(unset)`` for a key one side lacks). Experimental options at their
+    defaults are left out of both before comparing (see the module docstring)."""
+    old, new = _without_neutral(_as_json(old)), _without_neutral(_as_json(new))
     if old == new:
         return None
     items = [f"{key}: {a} -> {b}" for key, a, b in _leaves_that_differ(old, new, "")]
     more = len(items) - limit
     return "; ".join(items[:limit]) + (f"; and {more} more" if more > 0 else "")
+
+
+def _neutral_options() -> dict:
+    """``{flat name: default}`` (as JSON) of the experimental options, whose defaults turn them off."""
+    from ..config import ExperimentalConfig
+    from ..config.checks import flat_name
+
+    return {flat_name(f): _as_json(f.default) for f in dataclasses.fields(ExperimentalConfig)}
+
+
+def _without_neutral(record):
+    """``record`` (JSON) with its ``config``'s experimental options at their defaults left out."""
+    config = record.get("config") if isinstance(record, dict) else None
+    if not isinstance(config, dict):
+        return record
+    neutral = _neutral_options()
+    kept = {k: v for k, v in config.items() if not (k in neutral and v == neutral[k])}
+    return {**record, "config": kept}
 
 
 def _leaves_that_differ(old, new, prefix: str):
