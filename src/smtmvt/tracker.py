@@ -392,8 +392,9 @@ class Tracker:
         return self._sparse.observe(scene, others, offset, valid, self._timed), costs
 
     def _choose(self, scene: Scene, obs: Observation, probe_boxes) -> tuple[TrackResult, FrameDetail]:
-        """Choose and learn: the best particle (or their mean), its scale moved
-        toward the scale filter's (:meth:`ScaleFilter.rescale`); then every cue learns
+        """Choose and learn: the best particle (or their mean), its scale refined
+        (:meth:`_refined_scale`) or moved toward the scale filter's
+        (:meth:`ScaleFilter.rescale`) where configured; then every cue learns
         from it (the sparse cue's template update first) and the next frame's
         resampling weights are set."""
         cfg = self.config
@@ -409,6 +410,11 @@ class Tracker:
         corr = self._corr
         confident = corr is None or corr.templates_learn(scene.judged, particles[best], scene.response)
         state = (p / p.sum()) @ particles if cfg.estimate == "mean" else particles[best].copy()
+        if cfg.scale_refine:  # (its stages time themselves)
+            factor = self._refined_scale(scene, best)
+            state[:4] *= factor
+            particles = particles.copy()
+            particles[:, :4] *= factor
         if self._scaler is not None:
             with self._timed("likelihood"):
                 chosen = self._from_work(reshaped_box(affine_to_box(state), reshape))
@@ -434,6 +440,31 @@ class Tracker:
         result = TrackResult(self._box, score, residual, decision.occluded, decision.replaced, self._frame_index)
         best_views = [v.copy() for v in self._sparse.views_of(best)]
         return result, FrameDetail(particles, obs, best, probe_boxes, self._scale, best_views, reshape)
+
+    def _refined_scale(self, scene: Scene, best: int) -> float:
+        """``config.scale_refine``: the factor on the chosen particle's size, among
+        ``exp(j * affine_std[0])`` for ``|j| <= scale_refine``, whose box at its centre
+        costs least (the sparse residual plus every cue's cost, as the particles were
+        scored; every sibling shares the chosen particle's motion step). The sparse
+        cue's record of the frame (its coding, for the template update) is kept."""
+        cfg, sampler, sparse = self.config, self._sampler, self._sparse
+        factors = np.exp(np.arange(-cfg.scale_refine, cfg.scale_refine + 1) * cfg.affine_std[0])
+        states = np.repeat(scene.particles[best][None], len(factors), axis=0)
+        states[:, :4] *= factors[:, None]
+        patches = sampler.patches(scene.prepared, states, scene.plane_scale, self._work_box)
+        views = sampler.extract(patches, cfg.views[: self._n_first])
+        steps = tuple(np.repeat(a[best : best + 1], len(states), axis=0) for a in scene.steps)
+        siblings = dataclasses.replace(
+            scene, particles=states, probes=np.zeros((0, 6)), patches=patches, views=views, steps=steps
+        )
+        kept = sparse.obs, sparse.deferred
+        try:
+            obs, _ = self._score(siblings)
+        finally:
+            sparse.obs, sparse.deferred = kept
+        if not np.any(obs.likelihood > 0):
+            return 1.0
+        return float(factors[int(np.argmax(obs.likelihood))])
 
     def _reshape(self) -> tuple[float, float, float]:
         """``(aspect, fraction, factor)`` of the reported boxes: the first box's

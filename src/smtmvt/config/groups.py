@@ -317,6 +317,12 @@ class ExperimentalConfig(Group):
     scale_filter: float = option(
         0.0, Real(0, 1), "Share of the way to :mod:`smtmvt.scale`'s size (docs/experiments.md#n43)."
     )
+    scale_refine: int = option(
+        0,
+        Whole(0, 10),
+        "After the choice, the chosen centre scored at this many scale steps of the random walk's\n"
+        "``affine_std[0]`` each way; the lowest cost gives the size, 0 off (docs/experiments.md#n61).",
+    )
     cue_reliability: bool = option(
         False, Flag(), "Each cue's cost times its agreement with the choices (docs/experiments.md#n51)."
     )
