@@ -9,6 +9,7 @@ import pytest
 from smtmvt import Tracker, TrackerConfig
 from smtmvt.cues import CUES, Cue, Scene, cue_names, register_cue, unregister_cue
 from smtmvt.demo import make_demo_sequence
+from smtmvt.geometry import box_to_affine
 
 
 class Rightward(Cue):
@@ -91,3 +92,17 @@ def test_cue_weights_name_registered_cues_outside_the_configuration(rightward):
         Tracker(TrackerConfig(), cue_weights={"anchor": 1.0})
     with pytest.raises(ValueError, match="built-in"):
         unregister_cue("anchor")
+
+
+def test_the_frame_detail_holds_each_cues_costs_of_particles_and_probes(demo, rightward):
+    """``FrameDetail.cue_costs``: every cue but the sparse one, in the tracker's order,
+    each cost over the particles then the probes, the value the cue computed."""
+    t = Tracker(TrackerConfig(n_particles=30, seed=0), cue_weights={"rightward": 0.5})
+    t.init(demo.frames[0], demo.groundtruth[0])
+    probes = np.array([demo.groundtruth[1], demo.groundtruth[1] + [5.0, 0.0, 0.0, 0.0]])
+    _, d = t.update_detailed(demo.frames[1], probes)
+    assert list(d.cue_costs) == [c.name for c in t.cues if c.name != "sparse"]
+    n = len(d.particles)
+    x = np.concatenate([d.particles[:, 4], box_to_affine(probes * np.tile(d.scale, 2))[:, 4]])
+    np.testing.assert_allclose(d.cue_costs["rightward"], 0.5 * (x.max() - x))
+    assert all(c is None or np.shape(c) == (n + 2,) for c in d.cue_costs.values())

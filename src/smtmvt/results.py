@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -107,6 +107,10 @@ class FrameDetail:
         (``config.report_aspect``: its aspect ratio moved ``fraction`` of the
         way to the first box's ``aspect``, in the working frame; then
         ``config.report_scale``: its width and height times ``factor``).
+    cue_costs : ``{name: (n + m,) float64 or None}``, each cue's cost of the
+        particles then the probes (the sparse cue's is ``observation.residual``),
+        as the cue gave it (before ``config.cue_reliability``'s factors; without the
+        part that comes with a deferred view, :meth:`smtmvt.cues.Cue.view_cost`).
     """
 
     particles: np.ndarray
@@ -116,6 +120,7 @@ class FrameDetail:
     scale: np.ndarray
     best_views: list | None = None
     reshape: tuple = (1.0, 0.0, 1.0)
+    cue_costs: dict = field(default_factory=dict)
 
     @property
     def boxes(self) -> np.ndarray:

@@ -261,6 +261,7 @@ class Tracker:
         scene = self._sample(frame, particles, probe_states, planes, response)
         obs, costs = self._score(scene)
         result, detail = self._choose(scene, obs, probe_boxes)
+        detail = dataclasses.replace(detail, cue_costs={cue.name: c for cue, c in zip(self._others, costs)})
         if self._reliability is not None and detail.best is not None:
             self._reliability.observe(costs, detail.best)  # read from the next frame on
         corr = self._corr
