@@ -6,21 +6,18 @@ it says, on a frame grown steadily about the target, where the random walk
 alone lags behind the growth.
 """
 
-import cv2
 import numpy as np
 import pytest
 from skimage import data
 
 from smtmvt import Tracker, TrackerConfig
-
-BOX = np.array([200.0, 150.0, 60.0, 48.0])  # on the astronaut's face and helmet
-CENTRE = BOX[:2] + (BOX[2:] - 1) / 2.0
+from test_scale import BOX, _centre
+from test_scale import _zoomed as _zoomed_about
 
 
 def _zoomed(img, f):
     """``img`` grown ``f`` times about the box's centre."""
-    M = np.array([[f, 0.0, CENTRE[0] * (1 - f)], [0.0, f, CENTRE[1] * (1 - f)]])
-    return cv2.warpAffine(img, M, (img.shape[1], img.shape[0]), flags=cv2.INTER_LINEAR, borderMode=cv2.BORDER_REFLECT)
+    return _zoomed_about(img, _centre(BOX), f)
 
 
 def _log_size(box) -> float:

@@ -260,8 +260,7 @@ class Tracker:
             self._camera.taken()
         scene = self._sample(frame, particles, probe_states, planes, response)
         obs, costs = self._score(scene)
-        result, detail = self._choose(scene, obs, probe_boxes)
-        detail = dataclasses.replace(detail, cue_costs={cue.name: c for cue, c in zip(self._others, costs)})
+        result, detail = self._choose(scene, obs, probe_boxes, costs)
         if self._reliability is not None and detail.best is not None:
             self._reliability.observe(costs, detail.best)  # read from the next frame on
         corr = self._corr
@@ -392,13 +391,15 @@ class Tracker:
             valid = inside_fraction(scene.states, work_shape) >= 0.5
         return self._sparse.observe(scene, others, offset, valid, self._timed), costs
 
-    def _choose(self, scene: Scene, obs: Observation, probe_boxes) -> tuple[TrackResult, FrameDetail]:
+    def _choose(self, scene: Scene, obs: Observation, probe_boxes, costs: list) -> tuple[TrackResult, FrameDetail]:
         """Choose and learn: the best particle (or their mean), its scale refined
         (:meth:`_refined_scale`) or moved toward the scale filter's
         (:meth:`ScaleFilter.rescale`) where configured; then every cue learns
         from it (the sparse cue's template update first) and the next frame's
-        resampling weights are set."""
+        resampling weights are set. ``costs``: the other cues' costs (:meth:`_score`),
+        kept in the :class:`FrameDetail`."""
         cfg = self.config
+        cue_costs = {cue.name: c for cue, c in zip(self._others, costs)}
         particles = scene.particles
         p = obs.likelihood[: len(particles)]
         reshape = self._reshape()
@@ -406,23 +407,18 @@ class Tracker:
             # Nothing explains the frame: keep the previous state (no NaN ever leaves).
             self._motion.keep(self._state)
             result = TrackResult(self._box, 0.0, float("inf"), True, None, self._frame_index)
-            return result, FrameDetail(particles, obs, None, probe_boxes, self._scale, None, reshape)
+            return result, FrameDetail(particles, obs, None, probe_boxes, self._scale, None, reshape, cue_costs)
         best = int(np.argmax(p))
         corr = self._corr
         confident = corr is None or corr.templates_learn(scene.judged, particles[best], scene.response)
         state = (p / p.sum()) @ particles if cfg.estimate == "mean" else particles[best].copy()
         if cfg.scale_refine:  # (its stages time themselves)
-            factor = self._refined_scale(scene, best)
-            state[:4] *= factor
-            particles = particles.copy()
-            particles[:, :4] *= factor
+            particles = _resized(state, particles, self._refined_scale(scene, best))
         if self._scaler is not None:
             with self._timed("likelihood"):
                 chosen = self._from_work(reshaped_box(affine_to_box(state), reshape))
                 factor = self._scaler.rescale(scene.frame, chosen, self._box, cfg.scale_filter)
-            state[:4] *= factor
-            particles = particles.copy()
-            particles[:, :4] *= factor
+            particles = _resized(state, particles, factor)
         velocity = np.zeros(2) if corr is not None and corr.redetected else state[4:] - self._state[4:]
         self._motion.chosen(particles, p, velocity, float(obs.residual[best]))
         self._state = state
@@ -440,7 +436,7 @@ class Tracker:
         score, residual = float(p[best]), float(obs.residual[best])
         result = TrackResult(self._box, score, residual, decision.occluded, decision.replaced, self._frame_index)
         best_views = [v.copy() for v in self._sparse.views_of(best)]
-        return result, FrameDetail(particles, obs, best, probe_boxes, self._scale, best_views, reshape)
+        return result, FrameDetail(particles, obs, best, probe_boxes, self._scale, best_views, reshape, cue_costs)
 
     def _refined_scale(self, scene: Scene, best: int) -> float:
         """``config.scale_refine``: the factor on the chosen particle's size, among
@@ -473,6 +469,15 @@ class Tracker:
         ``config.report_scale`` (:func:`smtmvt.results.reshaped_box`)."""
         first = affine_to_box(self._init_state)
         return float(first[3] / first[2]), float(self.config.report_aspect), float(self.config.report_scale)
+
+
+def _resized(state: np.ndarray, particles: np.ndarray, factor: float) -> np.ndarray:
+    """Scale ``state``'s size (``[:4]``, in place) by ``factor``; return a copy of
+    ``particles`` (n, 6) scaled alike, so that the next frame's search is about the new size."""
+    state[:4] *= factor
+    particles = particles.copy()
+    particles[:, :4] *= factor
+    return particles
 
 
 def track_frames(tracker: Tracker, frames, box):
