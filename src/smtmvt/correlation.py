@@ -86,6 +86,7 @@ __all__ = [
     "sample",
     "relative_scores",
     "correlation_cost",
+    "scaled_correlation_cost",
     "peak_point",
     "apce",
     "clears",
@@ -444,6 +445,37 @@ def correlation_cost(response: np.ndarray, window: Window, centres, reference: f
         return np.zeros(n)
     scale = reference if reference is not None and reference > 0 else peak
     return (1.0 - relative_scores(response, window, centres)) * (peak / scale)
+
+
+def scaled_correlation_cost(levels, centres, log_sides, reference: float | None = None) -> np.ndarray:
+    """:func:`correlation_cost` read at each point's size as well as its place.
+
+    ``levels`` : ``[(log_side, response (h, w), Window), ...]`` the responses
+    over windows of several sizes about one centre, sorted by ``log_side``
+    (the log of the window's side over the reference window's);
+    ``centres`` : ``(n, 2)`` frame points; ``log_sides`` : ``(n,)`` each
+    point's box's log side over the reference's. ``r_i`` is the response at
+    the point, interpolated linearly in log side between the two levels about
+    its own (clamped to the outer ones), ``r_max`` the highest peak of all
+    levels; the cost ``(r_max - r_i) / reference`` as :func:`correlation_cost`,
+    ``(n,)`` float64 (SAMF, Li and Zhu, ECCV 2014 workshops, read per
+    candidate instead of at the best scale's peak).
+    """
+    c = np.asarray(centres, dtype=np.float64).reshape(-1, 2)
+    peak = max(float(r.max()) for _, r, _ in levels)
+    if not peak > 0:
+        return np.zeros(len(c))
+    ls = np.array([lv[0] for lv in levels])
+    at = np.stack([sample(r, w.cells(c)) for _, r, w in levels])  # (levels, n)
+    q = np.clip(np.asarray(log_sides, dtype=np.float64), ls[0], ls[-1])
+    hi = np.clip(np.searchsorted(ls, q), 1, len(ls) - 1) if len(ls) > 1 else np.zeros(len(q), dtype=np.intp)
+    lo = np.maximum(hi - 1, 0)
+    span = np.where(ls[hi] > ls[lo], ls[hi] - ls[lo], 1.0)
+    f = np.clip((q - ls[lo]) / span, 0.0, 1.0)
+    idx = np.arange(len(c))
+    r_i = (1.0 - f) * at[lo, idx] + f * at[hi, idx]
+    scale = reference if reference is not None and reference > 0 else peak
+    return (peak - np.clip(r_i, 0.0, peak)) / scale
 
 
 def peak_point(response: np.ndarray, window: Window) -> np.ndarray:

@@ -323,6 +323,15 @@ class ExperimentalConfig(Group):
         "After the choice, the chosen centre scored at this many scale steps of the random walk's\n"
         "``affine_std[0]`` each way; the lowest cost gives the size, 0 off (docs/experiments.md#n61).",
     )
+    correlation_scales: int = option(
+        0,
+        Whole(0, 5),
+        "The correlation cue read at each candidate's size: responses over windows this many\n"
+        "size steps each way of the prediction's, interpolated in log size; 0 off (docs/experiments.md#n62).",
+    )
+    correlation_scale_step: float = option(
+        0.05, Real(gt=0, le=0.5), "Log side between those windows (docs/experiments.md#n62)."
+    )
     cue_reliability: bool = option(
         False, Flag(), "Each cue's cost times its agreement with the choices (docs/experiments.md#n51)."
     )

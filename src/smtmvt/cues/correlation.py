@@ -23,7 +23,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..correlation import CELL, CorrelationFilter, apce, clears, correlation_cost, peak_point
+from ..correlation import (
+    CELL,
+    PADDING,
+    CorrelationFilter,
+    apce,
+    clears,
+    correlation_cost,
+    peak_point,
+    scaled_correlation_cost,
+)
 from ..geometry import affine_to_box, box_to_affine
 from ..motion import place
 from .base import Choice, Cue, Scene, Start
@@ -206,10 +215,39 @@ class CorrelationCue(Cue):
         r, window = response
         return self.weight * correlation_cost(r, window, centres, self.peak_ref)
 
+    def scaled_costs(self, frame, response, states: np.ndarray) -> np.ndarray:
+        """``config.correlation_scales``: :meth:`costs` read at each state's
+        size too (:func:`smtmvt.correlation.scaled_correlation_cost`): the
+        filter's responses over windows about ``response``'s centre
+        ``config.correlation_scale_step`` apart in log side, ``response``'s
+        own in the middle, ``(n,)``."""
+        assert self.filter is not None
+        cfg = self.config
+        r0, w0 = response
+        H, W = w0.size
+        size = np.array([w0.step[0] * W, w0.step[1] * H]) / PADDING  # the window's box (w, h), frame pixels
+        centre = np.array(w0.origin) + (np.array([W, H]) - 1.0) / 2.0 * np.array(w0.step)
+        levels = []
+        for j in range(-cfg.correlation_scales, cfg.correlation_scales + 1):
+            ls = j * cfg.correlation_scale_step
+            if j == 0:
+                levels.append((0.0, r0, w0))
+                continue
+            s = size * np.exp(ls)
+            box = np.array([*(centre - (s - 1.0) / 2.0), *s])
+            levels.append((ls, *self.filter.response(frame, box, cfg.correlation_first)))
+        boxes = self._input_box(states)
+        log_sides = 0.5 * np.log(boxes[:, 2] * boxes[:, 3] / (size[0] * size[1]))
+        centres = box_to_affine(boxes)[:, 4:]
+        return self.weight * scaled_correlation_cost(levels, centres, log_sides, self.peak_ref)
+
     def cost(self, scene: Scene) -> np.ndarray | None:
-        """:meth:`costs` of the scene's candidates; None with the weight 0."""
+        """:meth:`costs` of the scene's candidates (:meth:`scaled_costs` with
+        ``config.correlation_scales``); None with the weight 0."""
         if scene.response is None or not self.weight:
             return None
+        if self.config.correlation_scales:
+            return self.scaled_costs(scene.frame, scene.response, scene.states)
         return self.costs(scene.response, scene.states)
 
     def learn(self, scene: Scene, choice: Choice) -> None:
