@@ -33,11 +33,10 @@ import json
 
 import cv2
 import numpy as np
+from scale_change import run  # a script beside this one: bench/ is on the path
 
-from smtmvt import Tracker, TrackerConfig
+from smtmvt import TrackerConfig
 from smtmvt.demo import make_demo_sequence
-from smtmvt.evaluation.metrics import overlap_ratio
-from smtmvt.tracker import track_frames
 
 VARIANTS = ("jerks", "follow", "follow+jerks", "background-jerks")
 
@@ -77,11 +76,6 @@ def seen(frames: np.ndarray, boxes: np.ndarray, offsets: np.ndarray, still: bool
     return out, moved
 
 
-def mean_overlap(frames, truth, config: TrackerConfig) -> float:
-    boxes = [box for _, box, _ in track_frames(Tracker(config), frames, truth[0])]
-    return float(overlap_ratio(np.array(boxes), truth).mean())
-
-
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, default=8)
@@ -98,7 +92,7 @@ def main() -> None:
             offsets = camera_offsets(v.replace("background-", ""), centres, np.random.default_rng(1000 + s))
             frames, truth = seen(demo.frames, gt, offsets, still=v.startswith("background"))
             for on in (True, False):
-                scores[v, on].append(mean_overlap(frames, truth, base.replace(camera_motion=on, seed=s)))
+                scores[v, on].append(run(frames, truth, base.replace(camera_motion=on, seed=s))[0])
             print(f"seed {s} {v:16s} on {scores[v, True][-1]:.3f}  off {scores[v, False][-1]:.3f}", flush=True)
     print("variant           camera_motion on   off")
     for v in VARIANTS:
