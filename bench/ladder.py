@@ -68,6 +68,7 @@ STEPS: list[tuple[str, tuple[str, ...], str]] = [
     ("template-gate", ("template_learn_gate",), "adds: a test before the paper's template update"),
     ("redetect", ("redetect_after",), "adds: a wider search the paper does not have"),
     ("report-box", ("report_aspect", "report_scale"), "silent: the box reported for the state"),
+    ("report-size", ("report_read_size",), "adds: the reported size read by the correlation filter"),
 ]
 
 

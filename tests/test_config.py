@@ -36,6 +36,7 @@ DEFAULTS = {
     "estimate": "best",
     "report_aspect": 1.0,
     "report_scale": 1.03,
+    "report_read_size": 4,  # the default since stop 52 (docs/experiments.md#n64)
     "velocity": 0.5,
     "velocity_fraction": 1.0,
     "search_expand": 1.0,
@@ -103,6 +104,7 @@ PAPER = {
     "views": ("intensity", "color", "hog", "lbp"),
     "report_aspect": 0.0,
     "report_scale": 1.0,
+    "report_read_size": 0,
     "velocity": 0.0,
     "anchor_weight": 0.0,
     "foreground_weight": 0.0,
@@ -264,6 +266,7 @@ REFUSED = {
     "scale_refine": 11,
     "correlation_scales": 6,
     "correlation_scale_step": 0.0,
+    "report_read_size": 11,
     "cue_reliability": "yes",
     "anchor_cos": -2.0,
     "view_weights": (1.0, 0.0, 1.0, 1.0, 1.0),

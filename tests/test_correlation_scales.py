@@ -6,7 +6,7 @@ import pytest
 from scipy import ndimage
 
 from smtmvt import Tracker, TrackerConfig
-from smtmvt.correlation import CorrelationFilter, correlation_cost, scaled_correlation_cost
+from smtmvt.correlation import CorrelationFilter, correlation_cost, peak_level, scaled_correlation_cost
 from smtmvt.cues.correlation import CorrelationCue
 from smtmvt.demo import make_demo_sequence
 from smtmvt.geometry import box_to_affine
@@ -99,3 +99,44 @@ def test_the_tracker_reads_the_cue_at_each_candidate_size():
     scaled = before._corr.scaled_costs(frames[1], response, detail.particles)
     np.testing.assert_allclose(detail.cue_costs["correlation"][: len(detail.particles)], scaled, atol=1e-12)
     assert np.max(np.abs(scaled - before._corr.costs(response, detail.particles))) > 1e-4
+
+
+def test_peak_level_is_the_parabolas_vertex_between_ends():
+    step = 0.05
+    levels = np.arange(-4, 5) * step
+    # a parabola in log side peaked at 0.07: its vertex, exactly
+    peaks = 1.0 - (levels - 0.07) ** 2
+    assert peak_level(peaks, step) == pytest.approx(0.07, abs=1e-12)
+    # highest at an end: that end, no refinement
+    assert peak_level(np.linspace(0.0, 1.0, 9), step) == pytest.approx(4 * step)
+    assert peak_level(np.linspace(1.0, 0.0, 9), step) == pytest.approx(-4 * step)
+    # one window: its own size
+    assert peak_level([0.3], step) == 0.0
+
+
+@pytest.mark.parametrize("factor", [0.9, 1.12])
+def test_the_filter_reads_the_size_the_target_took(factor):
+    img = _texture()
+    t = Tracker(TrackerConfig(seed=0, report_read_size=4))
+    t.init(np.dstack([img] * 3), BOX)
+    cue = t._corr
+    zoomed = np.dstack([_zoomed(img, factor, CENTRE)] * 3)
+    read = cue.read_size(zoomed, BOX)
+    np.testing.assert_allclose(box_to_affine(read)[4:], CENTRE, atol=1e-9)  # about the same centre
+    assert read[2] / read[3] == pytest.approx(BOX[2] / BOX[3])
+    assert np.log(read[2] / BOX[2]) == pytest.approx(np.log(factor), abs=0.03)
+
+
+def test_reading_the_size_leaves_the_track_as_it_was():
+    demo = make_demo_sequence(n_frames=12)
+    frames, box = demo.frames, demo.groundtruth[0]
+    plain, read = Tracker(TrackerConfig(seed=0)), Tracker(TrackerConfig(seed=0, report_read_size=2))
+    plain.init(frames[0], box)
+    read.init(frames[0], box)
+    sizes = []
+    for f in frames[1:]:
+        a, b = plain.update(f), read.update(f)
+        np.testing.assert_array_equal(plain._state, read._state)
+        np.testing.assert_allclose(box_to_affine(np.array(b.box))[4:], box_to_affine(np.array(a.box))[4:], atol=1e-9)
+        sizes.append(np.log(b.box[2] / a.box[2]))
+    assert np.max(np.abs(sizes)) > 1e-3  # the reported size did change

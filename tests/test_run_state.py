@@ -383,6 +383,21 @@ def test_an_experimental_option_at_its_default_is_the_settings_of_before_it_exis
     assert settings_difference(before, now) == "config.camera_motion: (unset) -> true"
 
 
+def test_an_option_at_its_neutral_value_is_the_settings_of_before_it_existed():
+    """``report_read_size`` declares 0 neutral (the reported box as before it): the paper's
+    tracker (0) matches a record made before the field; the default (4) does not."""
+    from smtmvt.evaluation.settings import settings_difference, tracker_settings
+
+    paper = tracker_settings(make_tracker("smtmvt-paper", seed=0), {})
+    before = json.loads(json.dumps(paper))
+    del before["config"]["report_read_size"]
+    assert settings_difference(before, paper) is None
+    default = tracker_settings(make_tracker("smtmvt", seed=0), {})
+    before = json.loads(json.dumps(default))
+    del before["config"]["report_read_size"]
+    assert settings_difference(before, default) == "config.report_read_size: (unset) -> 4"
+
+
 def test_a_run_made_before_an_experimental_option_resumes_and_keeps_its_record(tmp_path, capsys):
     """A folder whose record and result records predate an experimental option: the same
     command finds its results done (nothing recomputed) and leaves run.json's record as it

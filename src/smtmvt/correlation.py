@@ -87,6 +87,7 @@ __all__ = [
     "relative_scores",
     "correlation_cost",
     "scaled_correlation_cost",
+    "peak_level",
     "peak_point",
     "apce",
     "clears",
@@ -476,6 +477,23 @@ def scaled_correlation_cost(levels, centres, log_sides, reference: float | None 
     r_i = (1.0 - f) * at[lo, idx] + f * at[hi, idx]
     scale = reference if reference is not None and reference > 0 else peak
     return (peak - np.clip(r_i, 0.0, peak)) / scale
+
+
+def peak_level(peaks, step: float) -> float:
+    """The log side of the highest of ``peaks`` ``(2J + 1,)``, the responses'
+    peaks over windows ``step`` apart in log side about the middle one (log
+    side 0), refined by the parabola through it and its neighbours where it
+    is not an end one; in ``[-J step, J step]``."""
+    p = np.asarray(peaks, dtype=np.float64)
+    J = (len(p) - 1) // 2
+    k = int(np.argmax(p))
+    level = float(k - J)
+    if 0 < k < len(p) - 1:
+        a, m, z = p[k - 1], p[k], p[k + 1]
+        curve = a - 2.0 * m + z
+        if curve < 0:
+            level += 0.5 * (a - z) / curve
+    return level * step
 
 
 def peak_point(response: np.ndarray, window: Window) -> np.ndarray:

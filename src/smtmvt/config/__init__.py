@@ -320,7 +320,7 @@ _PAPER: dict[str, dict[str, Any]] = {
         learn_memory=20,
         learn_floor=0.4,
     ),
-    "report": dict(aspect=0.0, scale=1.0),
+    "report": dict(aspect=0.0, scale=1.0, read_size=0),
     "experimental": dict(
         translation_power=1.0,
         aspect_std=None,

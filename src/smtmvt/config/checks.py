@@ -238,11 +238,16 @@ class Views(Check):
         return tuple(value)
 
 
-def option(default: Any, check: Check, doc: str, *, flat: str | None = None) -> Any:
+def option(default: Any, check: Check, doc: str, *, flat: str | None = None, neutral: Any = None) -> Any:
     """A field of a group: its ``default``, its ``check``, its ``doc`` (one to three lines:
     what, unit, evidence) and its ``flat`` name (``TrackerConfig(flat=...)``, ``cfg.flat``,
-    the JSON key) when that is not the field's own name."""
-    return dataclasses.field(default=default, metadata={"check": check, "doc": doc, "flat": flat})
+    the JSON key) when that is not the field's own name. ``neutral``: where given, the value
+    at which the tracker is as it was before the field existed (a run folder recorded
+    before it resumes with the field at that value: :mod:`smtmvt.evaluation.settings`)."""
+    metadata = {"check": check, "doc": doc, "flat": flat}
+    if neutral is not None:
+        metadata["neutral"] = neutral
+    return dataclasses.field(default=default, metadata=metadata)
 
 
 def flat_name(field: dataclasses.Field) -> str:

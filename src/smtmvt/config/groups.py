@@ -264,6 +264,14 @@ class ReportConfig(Group):
     scale: float = option(
         1.03, Real(gt=0), "The box's sides times this; paper 1 (docs/experiments.md#n45).", flat="report_scale"
     )
+    read_size: int = option(
+        4,
+        Whole(0, 10),
+        "The box's size read by the correlation filter at its centre, the highest response over windows\n"
+        "this many steps of 0.05 in log side each way; 0 off, paper 0 (docs/experiments.md#n64).",
+        flat="report_read_size",
+        neutral=0,
+    )
 
 
 @group("experimental")

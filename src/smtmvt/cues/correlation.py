@@ -30,6 +30,7 @@ from ..correlation import (
     apce,
     clears,
     correlation_cost,
+    peak_level,
     peak_point,
     scaled_correlation_cost,
 )
@@ -37,10 +38,12 @@ from ..geometry import affine_to_box, box_to_affine
 from ..motion import place
 from .base import Choice, Cue, Scene, Start
 
-__all__ = ["CorrelationCue", "REDETECT_REACH"]
+__all__ = ["CorrelationCue", "REDETECT_REACH", "READ_STEP"]
 
 #: How far ``config.redetect_after``'s windows are moved, in box widths (x) and heights (y).
 REDETECT_REACH = (0.5, 1.0)
+#: Log side between the windows of ``config.report_read_size``.
+READ_STEP = 0.05
 
 
 class CorrelationCue(Cue):
@@ -240,6 +243,28 @@ class CorrelationCue(Cue):
         log_sides = 0.5 * np.log(boxes[:, 2] * boxes[:, 3] / (size[0] * size[1]))
         centres = box_to_affine(boxes)[:, 4:]
         return self.weight * scaled_correlation_cost(levels, centres, log_sides, self.peak_ref)
+
+    def read_size(self, frame, box) -> np.ndarray:
+        """``config.report_read_size``: ``box`` ``(4,)`` (input-frame pixels)
+        about its centre at the size the filter reads there: the filter's
+        responses over ``2 J + 1`` windows ``READ_STEP`` apart in log side
+        about ``box``'s (``J`` the option), the log side of the highest peak
+        (:func:`smtmvt.correlation.peak_level`)."""
+        assert self.filter is not None
+        cfg = self.config
+        b = np.asarray(box, dtype=np.float64)
+        centre = b[:2] + (b[2:] - 1.0) / 2.0
+        J, step = cfg.report_read_size, READ_STEP
+
+        def sized(ls: float) -> np.ndarray:
+            s = b[2:] * np.exp(ls)
+            return np.array([*(centre - (s - 1.0) / 2.0), *s])
+
+        peaks = [
+            float(self.filter.response(frame, sized(j * step), cfg.correlation_first)[0].max())
+            for j in range(-J, J + 1)
+        ]
+        return sized(peak_level(peaks, step))
 
     def cost(self, scene: Scene) -> np.ndarray | None:
         """:meth:`costs` of the scene's candidates (:meth:`scaled_costs` with

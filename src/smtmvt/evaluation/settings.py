@@ -82,11 +82,18 @@ def settings_difference(old: dict, new: dict, limit: int = 6) -> str | None:
 
 
 def _neutral_options() -> dict:
-    """``{flat name: default}`` (as JSON) of the experimental options, whose defaults turn them off."""
-    from ..config import ExperimentalConfig
+    """``{flat name: value}`` (as JSON) of the options at whose value the tracker is as it was
+    before they existed: the experimental options' defaults (which turn them off), and each
+    other option's ``neutral`` value where :func:`smtmvt.config.checks.option` gives one."""
+    from ..config import GROUPS, ExperimentalConfig
     from ..config.checks import flat_name
 
-    return {flat_name(f): _as_json(f.default) for f in dataclasses.fields(ExperimentalConfig)}
+    neutral = {flat_name(f): _as_json(f.default) for f in dataclasses.fields(ExperimentalConfig)}
+    for group in GROUPS.values():
+        for f in dataclasses.fields(group):
+            if "neutral" in f.metadata:
+                neutral[flat_name(f)] = _as_json(f.metadata["neutral"])
+    return neutral
 
 
 def _without_neutral(record):
