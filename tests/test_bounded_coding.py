@@ -274,7 +274,11 @@ def test_mean_estimate_is_the_likelihood_weighted_mean_state(demo):
     from smtmvt.geometry import affine_to_box
 
     # a flat likelihood (small alpha), so that the mean is not just the best particle
-    t = Tracker(TrackerConfig(n_particles=80, seed=5, estimate="mean", alpha=1.0, report_aspect=0.0, report_scale=1.0))
+    t = Tracker(
+        TrackerConfig(
+            n_particles=80, seed=5, estimate="mean", alpha=1.0, report_aspect=0.0, report_scale=1.0, report_read_size=0
+        )
+    )
     t.init(demo.frames[0], demo.groundtruth[0])
     for f in demo.frames[1:4]:
         r, d = t.update_detailed(f)

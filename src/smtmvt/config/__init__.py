@@ -19,8 +19,9 @@ online (``correlation_weight``), in a confidence test on the template update
 candidates' window only (``crop_planes``, a speed setting) and the coarse
 and HOG views only where the bounds need them (``deferred_views``, a speed
 setting), in reporting each box at the first box's aspect ratio
-(``report_aspect``) and with its sides 1.03 times the state's
-(``report_scale``; the tracking itself is unchanged by either) and in not resizing
+(``report_aspect``), with its sides 1.03 times the state's
+(``report_scale``) and at the size the correlation filter reads at its centre
+(``report_read_size``; the tracking itself is unchanged by these) and in not resizing
 frames to 320x240, the best configuration measured (fields named by their flat names).
 
 How each default was chosen, the table of measured changes and the notes
