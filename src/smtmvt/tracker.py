@@ -424,12 +424,12 @@ class Tracker:
         self._state = state
         self._work_box = tuple(float(v) for v in affine_to_box(self._state))
         self._box = tuple(float(v) for v in self._from_work(reshaped_box(self._work_box, reshape)))
-        if cfg.report_read_size and corr is not None:  # the reported box only: the track is as without it
-            with self._timed("likelihood"):
-                self._box = tuple(float(v) for v in corr.read_size(scene.frame, self._box))
         if self._scaler is not None and (corr is None or corr.learns(scene.judged, state, scene.response)):
             with self._timed("likelihood"):
                 self._scaler.update(scene.frame, self._box)
+        if cfg.report_read_size and corr is not None:  # the reported box only: the track is as without it
+            with self._timed("likelihood"):
+                self._box = tuple(float(v) for v in corr.read_size(scene.frame, self._box))
         choice = Choice(best, confident, state, self._work_box, self._box, obs.likelihood)
         for cue in self.cues:
             with self._timed(cue.stage):

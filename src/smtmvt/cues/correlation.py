@@ -15,6 +15,10 @@ that response serves four ends:
   ``config.template_learn_gate``), judged against the responses before;
 * the evidence of :mod:`smtmvt.confidence` (the peak and APCE ratios).
 
+After the choice the filter also reads the reported box's size, over
+windows of several sizes about its centre (``config.report_read_size``,
+:meth:`CorrelationCue.read_size`); the track does not see that size.
+
 The cue is on when either of ``correlation_weight`` and
 ``correlation_particles`` is; with the weight 0 it costs nothing.
 """
