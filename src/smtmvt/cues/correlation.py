@@ -38,7 +38,7 @@ from ..correlation import (
     peak_point,
     scaled_correlation_cost,
 )
-from ..geometry import affine_to_box, box_to_affine
+from ..geometry import affine_to_box, box_scaled, box_to_affine
 from ..motion import place
 from .base import Choice, Cue, Scene, Start
 
@@ -234,15 +234,14 @@ class CorrelationCue(Cue):
         H, W = w0.size
         size = np.array([w0.step[0] * W, w0.step[1] * H]) / PADDING  # the window's box (w, h), frame pixels
         centre = np.array(w0.origin) + (np.array([W, H]) - 1.0) / 2.0 * np.array(w0.step)
+        own = np.array([*(centre - (size - 1.0) / 2.0), *size])  # the box whose window it is
         levels = []
         for j in range(-cfg.correlation_scales, cfg.correlation_scales + 1):
             ls = j * cfg.correlation_scale_step
             if j == 0:
                 levels.append((0.0, r0, w0))
                 continue
-            s = size * np.exp(ls)
-            box = np.array([*(centre - (s - 1.0) / 2.0), *s])
-            levels.append((ls, *self.filter.response(frame, box, cfg.correlation_first)))
+            levels.append((ls, *self.filter.response(frame, box_scaled(own, np.exp(ls)), cfg.correlation_first)))
         boxes = self._input_box(states)
         log_sides = 0.5 * np.log(boxes[:, 2] * boxes[:, 3] / (size[0] * size[1]))
         centres = box_to_affine(boxes)[:, 4:]
@@ -256,19 +255,12 @@ class CorrelationCue(Cue):
         (:func:`smtmvt.correlation.peak_level`)."""
         assert self.filter is not None
         cfg = self.config
-        b = np.asarray(box, dtype=np.float64)
-        centre = b[:2] + (b[2:] - 1.0) / 2.0
         J, step = cfg.report_read_size, READ_STEP
-
-        def sized(ls: float) -> np.ndarray:
-            s = b[2:] * np.exp(ls)
-            return np.array([*(centre - (s - 1.0) / 2.0), *s])
-
         peaks = [
-            float(self.filter.response(frame, sized(j * step), cfg.correlation_first)[0].max())
+            float(self.filter.response(frame, box_scaled(box, np.exp(j * step)), cfg.correlation_first)[0].max())
             for j in range(-J, J + 1)
         ]
-        return sized(peak_level(peaks, step))
+        return box_scaled(box, np.exp(peak_level(peaks, step)))
 
     def cost(self, scene: Scene) -> np.ndarray | None:
         """:meth:`costs` of the scene's candidates (:meth:`scaled_costs` with
